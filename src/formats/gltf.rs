@@ -1,0 +1,271 @@
+//! glTF 2.0 writer for visual meshes: per-link `.gltf` + `.bin` files that Drake reads as
+//! visual geometry, and whole-scene binary GLB files.
+//!
+//! glTF is +Y up; the project is +Z up. Vertices are stored in glTF's convention
+//! (`(x, y, z)_zup -> (x, z, -y)_yup`), which Drake undoes when it loads a glTF file.
+
+use serde_json::{Value, json};
+
+use crate::assets::VisualPart;
+use crate::scene::Pose;
+
+const ARRAY_BUFFER: u32 = 34962;
+const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+const FLOAT: u32 = 5126;
+const UNSIGNED_INT: u32 = 5125;
+
+/// Accumulates meshes, materials and nodes, then writes `.gltf` or `.glb`.
+#[derive(Debug, Default)]
+pub struct GltfBuilder {
+    bin: Vec<u8>,
+    buffer_views: Vec<Value>,
+    accessors: Vec<Value>,
+    meshes: Vec<Value>,
+    materials: Vec<Value>,
+    material_keys: Vec<[u32; 4]>,
+    nodes: Vec<Value>,
+    roots: Vec<usize>,
+}
+
+/// Z-up point or direction to glTF's Y-up.
+fn to_y_up(v: [f64; 3]) -> [f32; 3] {
+    [v[0] as f32, v[2] as f32, -v[1] as f32]
+}
+
+impl GltfBuilder {
+    /// An empty builder.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    fn push_view(&mut self, bytes: &[u8], target: u32) -> usize {
+        while !self.bin.len().is_multiple_of(4) {
+            self.bin.push(0);
+        }
+        let offset = self.bin.len();
+        self.bin.extend_from_slice(bytes);
+        self.buffer_views.push(json!({
+            "buffer": 0, "byteOffset": offset, "byteLength": bytes.len(), "target": target
+        }));
+        self.buffer_views.len() - 1
+    }
+
+    fn material(&mut self, color: [f64; 4]) -> usize {
+        let key = color.map(|c| (c.clamp(0.0, 1.0) * 1e4).round() as u32);
+        if let Some(i) = self.material_keys.iter().position(|k| *k == key) {
+            return i;
+        }
+        let c = color.map(|c| ((c.clamp(0.0, 1.0) * 1e4).round() / 1e4) as f32);
+        let mut m = json!({
+            "name": format!("color_{}", self.materials.len()),
+            "pbrMetallicRoughness": {
+                "baseColorFactor": c,
+                "metallicFactor": 0.0,
+                "roughnessFactor": 0.8
+            },
+            "doubleSided": false
+        });
+        if c[3] < 1.0 {
+            m["alphaMode"] = json!("BLEND");
+        }
+        self.materials.push(m);
+        self.material_keys.push(key);
+        self.materials.len() - 1
+    }
+
+    /// Adds one mesh whose primitives are `parts` (one primitive per part, with its colour).
+    /// Returns the mesh index.
+    pub fn add_mesh(&mut self, name: &str, parts: &[VisualPart]) -> usize {
+        let mut primitives = Vec::new();
+        for part in parts.iter().filter(|p| !p.mesh.is_empty()) {
+            let pos: Vec<[f32; 3]> = part.mesh.positions.iter().map(|p| to_y_up(*p)).collect();
+            let nrm: Vec<[f32; 3]> = part.mesh.normals.iter().map(|n| to_y_up(*n)).collect();
+            let mut lo = [f32::INFINITY; 3];
+            let mut hi = [f32::NEG_INFINITY; 3];
+            for p in &pos {
+                for i in 0..3 {
+                    lo[i] = lo[i].min(p[i]);
+                    hi[i] = hi[i].max(p[i]);
+                }
+            }
+            let pos_bytes: Vec<u8> = pos.iter().flatten().flat_map(|v| v.to_le_bytes()).collect();
+            let nrm_bytes: Vec<u8> = nrm.iter().flatten().flat_map(|v| v.to_le_bytes()).collect();
+            let idx_bytes: Vec<u8> = part
+                .mesh
+                .triangles
+                .iter()
+                .flatten()
+                .flat_map(|v| v.to_le_bytes())
+                .collect();
+            let pv = self.push_view(&pos_bytes, ARRAY_BUFFER);
+            let nv = self.push_view(&nrm_bytes, ARRAY_BUFFER);
+            let iv = self.push_view(&idx_bytes, ELEMENT_ARRAY_BUFFER);
+            self.accessors.push(json!({
+                "bufferView": pv, "componentType": FLOAT, "count": pos.len(), "type": "VEC3",
+                "min": lo, "max": hi
+            }));
+            let pa = self.accessors.len() - 1;
+            self.accessors.push(json!({
+                "bufferView": nv, "componentType": FLOAT, "count": nrm.len(), "type": "VEC3"
+            }));
+            let na = self.accessors.len() - 1;
+            self.accessors.push(json!({
+                "bufferView": iv, "componentType": UNSIGNED_INT,
+                "count": part.mesh.triangles.len() * 3, "type": "SCALAR"
+            }));
+            let ia = self.accessors.len() - 1;
+            let mat = self.material(part.color);
+            primitives.push(json!({
+                "attributes": {"POSITION": pa, "NORMAL": na},
+                "indices": ia,
+                "material": mat,
+                "mode": 4
+            }));
+        }
+        self.meshes
+            .push(json!({"name": name, "primitives": primitives}));
+        self.meshes.len() - 1
+    }
+
+    /// Adds a node with an optional mesh, an optional pose relative to its parent (Z-up,
+    /// converted to glTF's frame) and children. Returns the node index.
+    pub fn add_node(
+        &mut self,
+        name: &str,
+        mesh: Option<usize>,
+        parent_from_node: Option<&Pose>,
+        children: Vec<usize>,
+    ) -> usize {
+        let mut node = json!({"name": name});
+        if let Some(m) = mesh {
+            node["mesh"] = json!(m);
+        }
+        if let Some(p) = parent_from_node {
+            let t = to_y_up([p.translation().x, p.translation().y, p.translation().z]);
+            let q = p.rotation();
+            // Rotations change frame like vectors: the axis maps through the same Y-up swap.
+            let axis = to_y_up([q.i, q.j, q.k]);
+            node["translation"] = json!(t);
+            node["rotation"] = json!([axis[0], axis[1], axis[2], q.w as f32]);
+        }
+        if !children.is_empty() {
+            node["children"] = json!(children);
+        }
+        self.nodes.push(node);
+        self.nodes.len() - 1
+    }
+
+    /// Marks a node as a root of the default scene.
+    pub fn add_root(&mut self, node: usize) {
+        self.roots.push(node);
+    }
+
+    fn document(&self, uri: Option<&str>) -> Value {
+        let mut buffer = json!({"byteLength": self.bin.len()});
+        if let Some(u) = uri {
+            buffer["uri"] = json!(u);
+        }
+        json!({
+            "asset": {"version": "2.0", "generator": concat!("scenesmith ", env!("CARGO_PKG_VERSION"))},
+            "scene": 0,
+            "scenes": [{"nodes": self.roots}],
+            "nodes": self.nodes,
+            "meshes": self.meshes,
+            "materials": self.materials,
+            "accessors": self.accessors,
+            "bufferViews": self.buffer_views,
+            "buffers": [buffer],
+        })
+    }
+
+    /// `.gltf` JSON text referring to the binary buffer at `bin_uri`, and the buffer bytes.
+    pub fn to_gltf(&self, bin_uri: &str) -> (String, Vec<u8>) {
+        let text = serde_json::to_string(&self.document(Some(bin_uri))).unwrap_or_default();
+        (text, self.bin.clone())
+    }
+
+    /// A self-contained binary glTF (GLB).
+    pub fn to_glb(&self) -> Vec<u8> {
+        let mut json_bytes = serde_json::to_vec(&self.document(None)).unwrap_or_default();
+        while !json_bytes.len().is_multiple_of(4) {
+            json_bytes.push(b' ');
+        }
+        let mut bin = self.bin.clone();
+        while !bin.len().is_multiple_of(4) {
+            bin.push(0);
+        }
+        let total = 12 + 8 + json_bytes.len() + 8 + bin.len();
+        let mut out = Vec::with_capacity(total);
+        out.extend_from_slice(b"glTF");
+        out.extend_from_slice(&2u32.to_le_bytes());
+        out.extend_from_slice(&(total as u32).to_le_bytes());
+        out.extend_from_slice(&(json_bytes.len() as u32).to_le_bytes());
+        out.extend_from_slice(b"JSON");
+        out.extend_from_slice(&json_bytes);
+        out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+        out.extend_from_slice(b"BIN\0");
+        out.extend_from_slice(&bin);
+        out
+    }
+}
+
+/// The `.gltf` text and `.bin` bytes of one link's visual parts (a single node, no transform).
+pub fn link_visual_gltf(name: &str, parts: &[VisualPart], bin_uri: &str) -> (String, Vec<u8>) {
+    let mut b = GltfBuilder::new();
+    let mesh = b.add_mesh(name, parts);
+    let node = b.add_node(name, Some(mesh), None, vec![]);
+    b.add_root(node);
+    b.to_gltf(bin_uri)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::mesh::box_mesh;
+
+    fn part() -> VisualPart {
+        VisualPart {
+            name: "p".into(),
+            mesh: box_mesh([0.0, 0.0, 0.5], [1.0, 2.0, 1.0]),
+            color: [0.5, 0.4, 0.3, 1.0],
+        }
+    }
+
+    #[test]
+    fn gltf_bounds_are_y_up() {
+        let (text, bin) = link_visual_gltf("body", &[part()], "body.bin");
+        let doc: Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(
+            doc["buffers"][0]["byteLength"].as_u64().unwrap() as usize,
+            bin.len()
+        );
+        let acc = &doc["accessors"][0];
+        // z-up height 0..1 becomes y-up 0..1; z-up y extent -1..1 becomes -z 1..-1.
+        assert_eq!(acc["min"][1].as_f64().unwrap(), 0.0);
+        assert_eq!(acc["max"][1].as_f64().unwrap(), 1.0);
+        assert_eq!(acc["min"][2].as_f64().unwrap(), -1.0);
+        assert_eq!(doc["asset"]["version"], "2.0");
+    }
+
+    #[test]
+    fn glb_header_is_consistent() {
+        let mut b = GltfBuilder::new();
+        let m = b.add_mesh("m", &[part(), part()]);
+        let n = b.add_node(
+            "n",
+            Some(m),
+            Some(&Pose::from_xyz_yaw(1.0, 2.0, 0.0, 0.5)),
+            vec![],
+        );
+        b.add_root(n);
+        let glb = b.to_glb();
+        assert_eq!(&glb[0..4], b"glTF");
+        let total = u32::from_le_bytes(glb[8..12].try_into().unwrap()) as usize;
+        assert_eq!(total, glb.len());
+        assert_eq!(total % 4, 0);
+        // One shared material for two parts of the same colour.
+        let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+        let doc: Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
+        assert_eq!(doc["materials"].as_array().unwrap().len(), 1);
+    }
+}

@@ -1,0 +1,149 @@
+//! Layout stage: rooms, their sizes and walls, doors and windows.
+//!
+//! For now this builds a single room sized from its type and the prompt's size words, with one
+//! exterior door and one window. The multi-room layout search replaces [`single_room`] as the
+//! entry point of the stage.
+
+pub mod architecture;
+
+use rand::RngExt;
+use rand::rngs::ChaCha8Rng;
+
+use crate::prompt::{self, Reading};
+use crate::scene::{Opening, OpeningKind, Room, Wall};
+
+/// Default wall thickness, metres.
+pub const WALL_THICKNESS: f64 = 0.12;
+/// Standard door: width, height (metres).
+pub const DOOR_SIZE: [f64; 2] = [0.9, 2.1];
+/// Standard window: width, height, sill (metres).
+pub const WINDOW_SIZE: [f64; 3] = [1.2, 1.2, 0.9];
+
+/// Four walls around a `w x d` clear floor whose lower-left interior corner is at `origin`.
+///
+/// Walls run counter-clockwise (south, east, north, west) with centre lines `thickness / 2`
+/// outside the clear floor, so every wall frame's +Y points into the room.
+pub fn rectangle_walls(
+    room_id: &str,
+    origin: [f64; 2],
+    w: f64,
+    d: f64,
+    thickness: f64,
+) -> Vec<Wall> {
+    let h = thickness / 2.0;
+    let (x0, y0) = (origin[0] - h, origin[1] - h);
+    let (x1, y1) = (origin[0] + w + h, origin[1] + d + h);
+    let corners = [[x0, y0], [x1, y0], [x1, y1], [x0, y1]];
+    (0..4)
+        .map(|i| Wall {
+            id: format!("{room_id}_wall_{i}"),
+            start: corners[i],
+            end: corners[(i + 1) % 4],
+            thickness,
+            neighbor: None,
+            openings: Vec::new(),
+        })
+        .collect()
+}
+
+/// One room for the whole prompt: clear floor from the type's prior (scaled by size words and
+/// jittered by the seed), a door in the south wall and a window in the north wall.
+pub fn single_room(
+    room_id: &str,
+    reading: &Reading,
+    prompt_text: &str,
+    rng: &mut ChaCha8Rng,
+) -> Room {
+    let types = prompt::room_types();
+    let info = types
+        .get(&reading.room_type)
+        .or_else(|| types.get("room"))
+        .cloned()
+        .unwrap_or(prompt::RoomTypeInfo {
+            size: [4.0, 3.6],
+            wall_height: 2.7,
+            floor: "oak".into(),
+            wall: "plaster".into(),
+            words: vec![],
+            defaults: Default::default(),
+        });
+    let jitter = |rng: &mut ChaCha8Rng| 1.0 + rng.random_range(-0.05..0.05);
+    let w = (info.size[0] * reading.size_scale * jitter(rng) * 10.0).round() / 10.0;
+    let d = (info.size[1] * reading.size_scale * jitter(rng) * 10.0).round() / 10.0;
+    let w = w.max(2.0);
+    let d = d.max(2.0);
+    let mut walls = rectangle_walls(room_id, [0.0, 0.0], w, d, WALL_THICKNESS);
+
+    // Door in the south wall, near one end (where it leaves the most usable wall).
+    let south_len = walls[0].length();
+    let door_center = if rng.random_bool(0.5) {
+        WALL_THICKNESS / 2.0 + 0.25 + DOOR_SIZE[0] / 2.0
+    } else {
+        south_len - WALL_THICKNESS / 2.0 - 0.25 - DOOR_SIZE[0] / 2.0
+    };
+    walls[0].openings.push(Opening {
+        id: format!("{room_id}_door_0"),
+        kind: OpeningKind::Door,
+        center: door_center,
+        width: DOOR_SIZE[0],
+        bottom: 0.0,
+        height: DOOR_SIZE[1],
+    });
+    // Window centred in the north wall.
+    let north_len = walls[2].length();
+    walls[2].openings.push(Opening {
+        id: format!("{room_id}_window_0"),
+        kind: OpeningKind::Window,
+        center: north_len / 2.0,
+        width: WINDOW_SIZE[0].min(north_len * 0.5),
+        bottom: WINDOW_SIZE[2],
+        height: WINDOW_SIZE[1],
+    });
+    Room {
+        id: room_id.to_string(),
+        room_type: reading.room_type.clone(),
+        prompt: prompt_text.to_string(),
+        floor_polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]],
+        wall_height: info.wall_height,
+        walls,
+        floor_material: info.floor,
+        wall_material: info.wall,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+
+    #[test]
+    fn kitchen_is_kitchen_sized_and_enclosed() {
+        let reading = prompt::read("a kitchen with a table");
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let room = single_room("kitchen_0", &reading, "a kitchen with a table", &mut rng);
+        let (lo, hi) = crate::geometry::polygon::bounds(&room.floor_polygon);
+        assert!((hi[0] - lo[0] - 4.2).abs() < 0.4);
+        assert_eq!(room.walls.len(), 4);
+        // Walls close: each ends where the next starts.
+        for i in 0..4 {
+            assert_eq!(room.walls[i].end, room.walls[(i + 1) % 4].start);
+        }
+        let doors = room
+            .walls
+            .iter()
+            .flat_map(|w| &w.openings)
+            .filter(|o| o.kind == OpeningKind::Door)
+            .count();
+        assert_eq!(doors, 1);
+    }
+
+    #[test]
+    fn size_words_scale_the_room() {
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let small = single_room("a", &prompt::read("a small bedroom"), "", &mut rng);
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        let large = single_room("b", &prompt::read("a large bedroom"), "", &mut rng);
+        let area = |r: &Room| crate::geometry::polygon::signed_area(&r.floor_polygon);
+        assert!(area(&large) > 2.0 * area(&small));
+    }
+}

@@ -1,0 +1,29 @@
+//! # scenesmith
+//!
+//! Text prompt in, simulation-ready indoor scene out: rooms with volumetric walls, doors and
+//! windows, furniture and small objects that are each separately manipulable, with convex
+//! collision geometry, mass, inertia, friction and articulated doors and drawers. The native
+//! output is SDFormat plus Drake model directives.
+//!
+//! Modules follow the pipeline (see `ARCHITECTURE` in the README):
+//! [`prompt`] reads the prompt, [`layout`] builds rooms and architecture, [`stages`] place
+//! objects, [`assets`] make them, [`physics`] checks them (parry3d in-process, Drake through
+//! the bridge), [`formats`] write the scene directory, [`pipeline`] ties the run together.
+//!
+//! This crate does not render, simulate or plan by itself: Drake (through `drake_bridge/`)
+//! does the simulation.
+
+#![warn(missing_docs)]
+// Index loops read better than iterator chains in small fixed-size matrix code.
+#![allow(clippy::needless_range_loop)]
+
+pub mod assets;
+pub mod formats;
+pub mod geometry;
+pub mod layout;
+pub mod physics;
+pub mod pipeline;
+pub mod prompt;
+pub mod scene;
+pub mod stages;
+pub mod util;

@@ -1,0 +1,261 @@
+//! The `scenesmith` command line.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::Context;
+use clap::{Parser, Subcommand};
+use serde_json::json;
+
+use scenesmith::physics::Bridge;
+use scenesmith::pipeline::{self, GenerateOptions, PipelineError};
+
+/// Text prompt -> simulation-ready indoor scene (SDFormat + Drake model directives).
+#[derive(Parser)]
+#[command(name = "scenesmith", version, about)]
+struct Cli {
+    /// Print a machine-readable JSON summary on stdout.
+    #[arg(long, global = true)]
+    json: bool,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Generate a scene directory from a prompt.
+    ///
+    /// Current planner: one room sized from the prompt's room type, with walls, a door and a
+    /// window, furnished with the starter assets (tables, chairs, cabinets, shelves, mugs,
+    /// plates, books) on the floor and on surfaces. Multi-room layouts and the agent-driven
+    /// stages replace this planner in later versions.
+    Generate {
+        /// What the scene should be, e.g. "a kitchen with a table and four chairs".
+        prompt: String,
+        /// Output directory (replaced if it holds a previous scene).
+        #[arg(long, short)]
+        out: PathBuf,
+        /// Seed for every random choice; same prompt + seed = same scene, byte for byte.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Skip loading the result in Drake before writing it.
+        #[arg(long)]
+        no_check: bool,
+    },
+    /// Load a scene directory in Drake and report collisions; fails on any problem.
+    Check {
+        /// Scene directory.
+        dir: PathBuf,
+        /// Penetration depth that counts as a collision, metres.
+        #[arg(long, default_value_t = 1e-3)]
+        threshold: f64,
+        /// Highest acceptable COL (percent of objects in collision).
+        #[arg(long, default_value_t = 0.0)]
+        max_col: f64,
+    },
+    /// Report versions of the tool, Python, pydrake, solvers, MuJoCo and usd-core.
+    Doctor,
+}
+
+fn init_logging() {
+    let filter = tracing_subscriber::EnvFilter::try_from_env("SCENESMITH_LOG")
+        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("warn"));
+    tracing_subscriber::fmt()
+        .with_env_filter(filter)
+        .with_writer(std::io::stderr)
+        .with_target(false)
+        .init();
+}
+
+fn print_json(v: &serde_json::Value) -> anyhow::Result<()> {
+    println!("{}", serde_json::to_string_pretty(v)?);
+    Ok(())
+}
+
+fn run_generate(cli_json: bool, opts: GenerateOptions) -> anyhow::Result<ExitCode> {
+    eprintln!(
+        "scenesmith: generating {:?} -> {}",
+        opts.prompt,
+        opts.out.display()
+    );
+    let summary = match pipeline::generate(&opts) {
+        Ok(s) => s,
+        Err(e @ (PipelineError::EmptyPrompt | PipelineError::UnusablePrompt(_))) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+        Err(e) => {
+            return Err(e).context("generate failed; the output directory was left as it was");
+        }
+    };
+    if cli_json {
+        print_json(&serde_json::to_value(&summary)?)?;
+    } else {
+        eprintln!("wrote {}", summary.out.display());
+        for (id, ty) in &summary.rooms {
+            eprintln!("  room {id} ({ty})");
+        }
+        let cats: Vec<String> = summary
+            .objects_per_category
+            .iter()
+            .map(|(c, n)| format!("{n} {c}"))
+            .collect();
+        eprintln!("  objects: {}", cats.join(", "));
+        for r in &summary.furnishing {
+            for n in &r.notes {
+                eprintln!("  note: {n}");
+            }
+        }
+        if let Some(c) = &summary.check {
+            eprintln!(
+                "  drake {}: {} model instances, {} free bodies, COL {:.2}% (max depth {:.2} mm)",
+                c.drake,
+                c.model_instances,
+                c.free_bodies,
+                c.col_percent,
+                c.max_depth_m * 1e3
+            );
+        }
+        let t: Vec<String> = summary
+            .timings
+            .iter()
+            .map(|(k, v)| format!("{k} {v:.2}s"))
+            .collect();
+        eprintln!("  time: {}", t.join(", "));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn run_check(
+    cli_json: bool,
+    dir: PathBuf,
+    threshold: f64,
+    max_col: f64,
+) -> anyhow::Result<ExitCode> {
+    let mut bridge = Bridge::from_env()?;
+    let t0 = std::time::Instant::now();
+    let summary = pipeline::check_dir(&mut bridge, &dir, threshold)
+        .with_context(|| format!("checking {}", dir.display()))?;
+    let passed = summary.passed(max_col);
+    if cli_json {
+        let mut v = serde_json::to_value(&summary)?;
+        v["passed"] = json!(passed);
+        v["seconds"] = json!(t0.elapsed().as_secs_f64());
+        print_json(&v)?;
+    } else {
+        eprintln!("check {} with drake {}", dir.display(), summary.drake);
+        eprintln!(
+            "  model instances {} (scene objects {}), bodies {}, free bodies {}",
+            summary.model_instances, summary.scene_objects, summary.bodies, summary.free_bodies
+        );
+        eprintln!(
+            "  COL {:.2}% of {} objects (> {:.1} mm), mean depth {:.2} mm, max {:.2} mm",
+            summary.col_percent,
+            summary.col_objects,
+            summary.threshold_m * 1e3,
+            summary.mean_depth_m * 1e3,
+            summary.max_depth_m * 1e3
+        );
+        for (a, b, d) in &summary.pairs {
+            eprintln!("  penetrating: {a} / {b}: {:.2} mm", d * 1e3);
+        }
+        for p in &summary.problems {
+            eprintln!("  problem: {p}");
+        }
+        eprintln!(
+            "  {} in {:.2}s",
+            if passed { "PASS" } else { "FAIL" },
+            t0.elapsed().as_secs_f64()
+        );
+    }
+    Ok(if passed {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+fn run_doctor(cli_json: bool) -> anyhow::Result<ExitCode> {
+    let config = scenesmith::physics::BridgeConfig::from_env();
+    let mut report = json!({
+        "scenesmith": env!("CARGO_PKG_VERSION"),
+        "home": config.home,
+        "python": config.python,
+    });
+    let ok = match Bridge::start(config).and_then(|mut b| b.request("versions", json!({}))) {
+        Ok(v) => {
+            report["bridge"] = v;
+            true
+        }
+        Err(e) => {
+            report["bridge_error"] = json!(e.to_string());
+            false
+        }
+    };
+    if cli_json {
+        print_json(&report)?;
+    } else {
+        eprintln!("scenesmith {}", env!("CARGO_PKG_VERSION"));
+        eprintln!("  home:    {}", report["home"].as_str().unwrap_or_default());
+        eprintln!(
+            "  python:  {}",
+            report["python"].as_str().unwrap_or_default()
+        );
+        if ok {
+            let b = &report["bridge"];
+            eprintln!("  Python {}", b["python"].as_str().unwrap_or("?"));
+            eprintln!("  drake {}", b["drake"].as_str().unwrap_or("?"));
+            eprintln!(
+                "  SNOPT available {} enabled {}; IPOPT available {}",
+                b["snopt"]["available"], b["snopt"]["enabled"], b["ipopt"]["available"]
+            );
+            eprintln!("  numpy {}", b["numpy"].as_str().unwrap_or("missing"));
+            eprintln!("  mujoco {}", b["mujoco"].as_str().unwrap_or("missing"));
+            eprintln!("  usd-core {}", b["usd_core"].as_str().unwrap_or("missing"));
+        } else {
+            eprintln!(
+                "  bridge: {}",
+                report["bridge_error"].as_str().unwrap_or_default()
+            );
+        }
+    }
+    Ok(if ok {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+fn main() -> ExitCode {
+    init_logging();
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Generate {
+            prompt,
+            out,
+            seed,
+            no_check,
+        } => run_generate(
+            cli.json,
+            GenerateOptions {
+                prompt,
+                seed,
+                out,
+                drake_check: !no_check,
+            },
+        ),
+        Command::Check {
+            dir,
+            threshold,
+            max_col,
+        } => run_check(cli.json, dir, threshold, max_col),
+        Command::Doctor => run_doctor(cli.json),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(1)
+        }
+    }
+}

@@ -1,0 +1,386 @@
+//! One run end to end: prompt -> layout -> furnishing -> write -> Drake check, and the
+//! stand-alone `check` of a scene directory.
+//!
+//! A run builds everything in a staging directory next to the output and only replaces the
+//! output when every step, including the Drake check, succeeded.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use rand::SeedableRng;
+use rand::rngs::ChaCha8Rng;
+use serde::Serialize;
+use serde_json::json;
+
+use crate::assets::AssetError;
+use crate::formats::FormatError;
+use crate::formats::scene_dir::{self, names};
+use crate::geometry::GeometryError;
+use crate::layout::{self, architecture};
+use crate::physics::collision;
+use crate::physics::{Bridge, BridgeError};
+use crate::prompt;
+use crate::scene::{ObjectKind, Pose, Scene, Support, sanitize_name};
+use crate::stages::{SceneState, starter};
+use crate::util::fsx::{FsError, StagingDir};
+
+/// Longest prompt accepted, in characters.
+pub const MAX_PROMPT_CHARS: usize = 8000;
+
+/// What can stop a run.
+#[derive(Debug, thiserror::Error)]
+pub enum PipelineError {
+    /// Nothing to work from.
+    #[error(
+        "the prompt is empty: describe a room, e.g. \"a kitchen with a table and four chairs\""
+    )]
+    EmptyPrompt,
+    /// A prompt that cannot describe a scene.
+    #[error("the prompt cannot describe a scene: {0}")]
+    UnusablePrompt(String),
+    /// Output location problem.
+    #[error(transparent)]
+    Fs(#[from] FsError),
+    /// Writing files failed.
+    #[error(transparent)]
+    Format(#[from] FormatError),
+    /// An asset could not be built.
+    #[error(transparent)]
+    Asset(#[from] AssetError),
+    /// Geometry failed validation.
+    #[error(transparent)]
+    Geometry(#[from] GeometryError),
+    /// The Drake bridge failed.
+    #[error(transparent)]
+    Bridge(#[from] BridgeError),
+    /// The written scene does not load or is not collision-free.
+    #[error("scene check failed: {0}")]
+    CheckFailed(String),
+}
+
+/// Options of `generate`.
+#[derive(Debug, Clone)]
+pub struct GenerateOptions {
+    /// The user's prompt.
+    pub prompt: String,
+    /// Seed of every random choice.
+    pub seed: u64,
+    /// Output directory.
+    pub out: PathBuf,
+    /// Run the Drake check before committing the output.
+    pub drake_check: bool,
+}
+
+/// Wall time per step, seconds.
+pub type Timings = BTreeMap<String, f64>;
+
+/// What a run produced.
+#[derive(Debug, Clone, Serialize)]
+pub struct GenerateSummary {
+    /// Output directory.
+    pub out: PathBuf,
+    /// Room ids and types.
+    pub rooms: Vec<(String, String)>,
+    /// Object count per kind.
+    pub objects_per_kind: BTreeMap<String, usize>,
+    /// Object count per category.
+    pub objects_per_category: BTreeMap<String, usize>,
+    /// Requested vs placed, and notes.
+    pub furnishing: Vec<starter::StarterReport>,
+    /// Penetrating pairs found by the in-process (parry3d) check.
+    pub rust_penetrating_pairs: usize,
+    /// Drake check, when run.
+    pub check: Option<CheckSummary>,
+    /// Wall time per step, seconds.
+    pub timings: Timings,
+}
+
+/// Result of checking a scene directory with Drake.
+#[derive(Debug, Clone, Serialize, serde::Deserialize, PartialEq)]
+pub struct CheckSummary {
+    /// Drake version that loaded the scene.
+    pub drake: String,
+    /// Model instances loaded.
+    pub model_instances: usize,
+    /// Objects in `scene.json`.
+    pub scene_objects: usize,
+    /// Bodies in the plant.
+    pub bodies: usize,
+    /// Free bodies.
+    pub free_bodies: usize,
+    /// Objects counted for COL (architecture excluded).
+    pub col_objects: usize,
+    /// COL: percent of objects penetrating deeper than the threshold.
+    pub col_percent: f64,
+    /// Mean depth of the penetrating pairs, metres.
+    pub mean_depth_m: f64,
+    /// Deepest penetration, metres.
+    pub max_depth_m: f64,
+    /// Threshold, metres.
+    pub threshold_m: f64,
+    /// The penetrating pairs `(a, b, depth_m)`.
+    pub pairs: Vec<(String, String, f64)>,
+    /// Mismatches between `scene.json` and what Drake loaded.
+    pub problems: Vec<String>,
+}
+
+impl CheckSummary {
+    /// True when the scene loaded as written and COL is within `max_col_percent`.
+    pub fn passed(&self, max_col_percent: f64) -> bool {
+        self.problems.is_empty() && self.col_percent <= max_col_percent + 1e-9
+    }
+}
+
+/// Checks a prompt before any work: non-empty, bounded, made of words.
+pub fn validate_prompt(prompt: &str) -> Result<(), PipelineError> {
+    let trimmed = prompt.trim();
+    if trimmed.is_empty() {
+        return Err(PipelineError::EmptyPrompt);
+    }
+    if trimmed.chars().count() > MAX_PROMPT_CHARS {
+        return Err(PipelineError::UnusablePrompt(format!(
+            "{} characters; the limit is {MAX_PROMPT_CHARS}",
+            trimmed.chars().count()
+        )));
+    }
+    if !trimmed.chars().any(char::is_alphabetic) {
+        return Err(PipelineError::UnusablePrompt(
+            "it contains no words".to_string(),
+        ));
+    }
+    Ok(())
+}
+
+/// Package name for a scene written to `out`: the directory name as `[a-z0-9_]`.
+pub fn package_name_for(out: &Path) -> String {
+    let stem = out
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "scene".into());
+    sanitize_name(&stem)
+}
+
+fn timed<T>(timings: &mut Timings, step: &str, f: impl FnOnce() -> T) -> T {
+    let t0 = Instant::now();
+    let out = f();
+    timings.insert(step.to_string(), t0.elapsed().as_secs_f64());
+    out
+}
+
+/// Builds the scene of a prompt in memory (no files): layout and furnishing.
+pub fn build_scene(
+    prompt_text: &str,
+    seed: u64,
+    package_name: &str,
+) -> Result<(SceneState, Vec<starter::StarterReport>), PipelineError> {
+    validate_prompt(prompt_text)?;
+    let reading = prompt::read(prompt_text);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut scene = Scene::new(prompt_text, seed, package_name);
+    scene
+        .provenance
+        .backends
+        .insert("designer".into(), "builtin-starter".into());
+    scene
+        .provenance
+        .backends
+        .insert("assets".into(), "procedural".into());
+    scene
+        .provenance
+        .backends
+        .insert("physics".into(), "drake".into());
+    let room_id = scene.ids.allocate(&reading.room_type);
+    let room = layout::single_room(&room_id, &reading, prompt_text, &mut rng);
+    scene.rooms.push(room.clone());
+    let mut state = SceneState::new(scene);
+
+    let arch_asset = architecture::build_room_asset(&room, &format!("{room_id}_architecture"))?;
+    let arch_asset_id = state.insert_asset(arch_asset);
+    let arch_id = format!("{room_id}_architecture");
+    state.scene.ids.reserve(&arch_id);
+    state.scene.objects.push(crate::scene::SceneObject {
+        id: arch_id,
+        category: "room_architecture".into(),
+        kind: ObjectKind::Architecture,
+        room: room_id.clone(),
+        asset: arch_asset_id,
+        world_from_object: Pose::IDENTITY,
+        support: Support::World,
+        welded: true,
+        joint_positions: BTreeMap::new(),
+    });
+
+    let report = starter::furnish_room(&mut state, &room_id, &reading, &mut rng)?;
+    state.prune_assets();
+    Ok((state, vec![report]))
+}
+
+/// Runs the whole pipeline and writes the scene directory.
+pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError> {
+    validate_prompt(&opts.prompt)?;
+    let mut timings = Timings::new();
+    let t_total = Instant::now();
+    // Fails before any work when the output cannot be written.
+    let staging = StagingDir::new(&opts.out)?;
+    let package = package_name_for(staging.target());
+
+    let (mut state, reports) = timed(&mut timings, "plan", || {
+        build_scene(&opts.prompt, opts.seed, &package)
+    })?;
+
+    let rust_pairs = timed(&mut timings, "rust_collision_check", || {
+        collision::posed_objects(&state.scene, &state.assets)
+            .map(|objs| collision::penetrating_pairs(&objs, 1e-3))
+    })?;
+
+    timed(&mut timings, "write", || {
+        scene_dir::write_scene_dir(staging.path(), &state)
+    })?;
+
+    let check = if opts.drake_check {
+        let summary = timed(
+            &mut timings,
+            "drake_check",
+            || -> Result<_, PipelineError> {
+                let mut bridge = Bridge::from_env()?;
+                check_dir(&mut bridge, staging.path(), 1e-3)
+            },
+        )?;
+        if !summary.problems.is_empty() {
+            return Err(PipelineError::CheckFailed(summary.problems.join("; ")));
+        }
+        state.scene.checks = Some(json!({ "drake": summary }));
+        scene_dir::write_scene_json(staging.path(), &state.scene)?;
+        Some(summary)
+    } else {
+        None
+    };
+
+    let out = staging.commit()?;
+    timings.insert("total".into(), t_total.elapsed().as_secs_f64());
+    let mut per_kind = BTreeMap::new();
+    let mut per_cat = BTreeMap::new();
+    for o in &state.scene.objects {
+        *per_kind.entry(o.kind.as_str().to_string()).or_insert(0) += 1;
+        if o.kind != ObjectKind::Architecture {
+            *per_cat.entry(o.category.clone()).or_insert(0) += 1;
+        }
+    }
+    Ok(GenerateSummary {
+        out,
+        rooms: state
+            .scene
+            .rooms
+            .iter()
+            .map(|r| (r.id.clone(), r.room_type.clone()))
+            .collect(),
+        objects_per_kind: per_kind,
+        objects_per_category: per_cat,
+        furnishing: reports,
+        rust_penetrating_pairs: rust_pairs.len(),
+        check,
+        timings,
+    })
+}
+
+/// Loads a scene directory in Drake through `bridge` and measures collisions; compares what
+/// Drake loaded against `scene.json`.
+pub fn check_dir(
+    bridge: &mut Bridge,
+    dir: &Path,
+    threshold_m: f64,
+) -> Result<CheckSummary, PipelineError> {
+    let scene = scene_dir::read_scene(dir)?;
+    let directives = dir.join(names::DIRECTIVES);
+    let package_xml = dir.join(names::PACKAGE_XML);
+    let args = json!({
+        "directives": directives,
+        "package_xml": package_xml,
+    });
+    let loaded = bridge.request("load", args.clone())?;
+    let static_ids: Vec<String> = scene
+        .objects_of_kind(ObjectKind::Architecture)
+        .map(|o| o.id.clone())
+        .collect();
+    let mut report_args = args;
+    report_args["threshold"] = json!(threshold_m);
+    report_args["static_instances"] = json!(static_ids);
+    let report = bridge.request("collision_report", report_args)?;
+
+    let instances = loaded["model_instances"]
+        .as_array()
+        .cloned()
+        .unwrap_or_default();
+    let mut problems = Vec::new();
+    let loaded_names: std::collections::BTreeSet<String> = instances
+        .iter()
+        .filter_map(|m| m["name"].as_str().map(str::to_string))
+        .collect();
+    for o in &scene.objects {
+        if !loaded_names.contains(&o.id) {
+            problems.push(format!("object {} is not a model instance in Drake", o.id));
+        }
+    }
+    let mut free_bodies = 0;
+    for m in &instances {
+        let name = m["name"].as_str().unwrap_or_default();
+        let Some(obj) = scene.object(name) else {
+            problems.push(format!("Drake has an unexpected model instance {name}"));
+            continue;
+        };
+        let free = m["free_bodies"].as_object().cloned().unwrap_or_default();
+        free_bodies += free.len();
+        if obj.welded && !free.is_empty() {
+            problems.push(format!("{name} should be welded but Drake has it free"));
+        }
+        if !obj.welded && free.is_empty() {
+            problems.push(format!("{name} should be free but Drake has it welded"));
+        }
+        if let Some((_, pose)) = free.iter().next() {
+            let xyz: Vec<f64> = pose["xyz"]
+                .as_array()
+                .map(|a| a.iter().filter_map(|v| v.as_f64()).collect())
+                .unwrap_or_default();
+            let p = obj.world_from_object.translation();
+            if xyz.len() == 3
+                && ((xyz[0] - p.x).abs() > 1e-6
+                    || (xyz[1] - p.y).abs() > 1e-6
+                    || (xyz[2] - p.z).abs() > 1e-6)
+            {
+                problems.push(format!(
+                    "{name}: Drake pose {xyz:?} differs from scene.json [{}, {}, {}]",
+                    p.x, p.y, p.z
+                ));
+            }
+        }
+    }
+    let pairs = report["pairs"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .map(|p| {
+                    (
+                        p["a"].as_str().unwrap_or_default().to_string(),
+                        p["b"].as_str().unwrap_or_default().to_string(),
+                        p["depth"].as_f64().unwrap_or(0.0),
+                    )
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    Ok(CheckSummary {
+        drake: bridge.hello().drake.clone(),
+        model_instances: instances.len(),
+        scene_objects: scene.objects.len(),
+        bodies: loaded["num_bodies"].as_u64().unwrap_or(0) as usize,
+        free_bodies,
+        col_objects: report["objects"].as_u64().unwrap_or(0) as usize,
+        col_percent: report["col_percent"].as_f64().unwrap_or(f64::NAN),
+        mean_depth_m: report["mean_depth_m"].as_f64().unwrap_or(f64::NAN),
+        max_depth_m: report["max_depth_m"].as_f64().unwrap_or(f64::NAN),
+        threshold_m,
+        pairs,
+        problems,
+    })
+}
