@@ -1,0 +1,271 @@
+//! The command line as a user meets it: a scene from a prompt that Drake loads collision-free,
+//! determinism, and bad input that gives a clear error and loses nothing.
+
+mod common;
+
+use std::path::Path;
+
+use common::{dev_prompt, scenesmith, text};
+
+fn read(p: &Path) -> Vec<u8> {
+    std::fs::read(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+#[test]
+fn generate_then_check_passes_for_dev_prompts() {
+    let root = tempfile::tempdir().unwrap();
+    for id in ["type_diversity_15", "object_density_07", "house_03"] {
+        let out = root.path().join(id);
+        let prompt = dev_prompt(id);
+        let g = scenesmith(
+            &[
+                "generate",
+                &prompt,
+                "--out",
+                out.to_str().unwrap(),
+                "--json",
+            ],
+            &[],
+        );
+        assert!(g.status.success(), "{id}: {}", text(&g));
+        let summary: serde_json::Value = serde_json::from_slice(&g.stdout).unwrap();
+        assert_eq!(summary["check"]["col_percent"].as_f64(), Some(0.0), "{id}");
+        assert!(summary["check"]["problems"].as_array().unwrap().is_empty());
+        for f in [
+            "scene.dmd.yaml",
+            "scene_furniture_welded.dmd.yaml",
+            "scene.json",
+            "package.xml",
+        ] {
+            assert!(out.join(f).is_file(), "{id}: missing {f}");
+        }
+        let c = scenesmith(&["check", out.to_str().unwrap(), "--json"], &[]);
+        assert!(c.status.success(), "{id}: {}", text(&c));
+        let report: serde_json::Value = serde_json::from_slice(&c.stdout).unwrap();
+        assert_eq!(report["passed"], true);
+        assert!(
+            report["free_bodies"].as_u64().unwrap() >= 1,
+            "{id}: nothing free"
+        );
+    }
+}
+
+#[test]
+fn same_seed_same_bytes_other_seed_other_scene() {
+    let root = tempfile::tempdir().unwrap();
+    let prompt = dev_prompt("object_density_12");
+    // Same directory name under different parents, so the package names match too.
+    let run = |parent: &str, seed: &str| {
+        let out = root.path().join(parent).join("scene");
+        let g = scenesmith(
+            &[
+                "generate",
+                &prompt,
+                "--out",
+                out.to_str().unwrap(),
+                "--seed",
+                seed,
+                "--no-check",
+            ],
+            &[],
+        );
+        assert!(g.status.success(), "{}", text(&g));
+        out
+    };
+    let a = run("a", "7");
+    let b = run("b", "7");
+    let c = run("c", "8");
+    for f in [
+        "scene.json",
+        "scene.dmd.yaml",
+        "scene_furniture_welded.dmd.yaml",
+        "package.xml",
+    ] {
+        assert_eq!(
+            read(&a.join(f)),
+            read(&b.join(f)),
+            "{f} differs between identical runs"
+        );
+    }
+    assert_ne!(read(&a.join("scene.json")), read(&c.join("scene.json")));
+}
+
+#[test]
+fn empty_prompt_exits_2_with_a_message() {
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("never");
+    for prompt in ["", "   ", "12345 !!!"] {
+        let g = scenesmith(&["generate", prompt, "--out", out.to_str().unwrap()], &[]);
+        assert_eq!(g.status.code(), Some(2), "{}", text(&g));
+        let err = String::from_utf8_lossy(&g.stderr);
+        assert!(err.contains("prompt"), "{err}");
+        assert!(!out.exists());
+    }
+    assert_eq!(std::fs::read_dir(root.path()).unwrap().count(), 0);
+}
+
+#[test]
+fn unwritable_output_is_a_clear_error() {
+    let root = tempfile::tempdir().unwrap();
+    // A path below a regular file can never be created.
+    let file = root.path().join("file.txt");
+    std::fs::write(&file, "x").unwrap();
+    let out = file.join("scene");
+    let g = scenesmith(
+        &[
+            "generate",
+            "a kitchen with a table",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &[],
+    );
+    assert_eq!(g.status.code(), Some(1), "{}", text(&g));
+    assert!(
+        String::from_utf8_lossy(&g.stderr).contains("file.txt"),
+        "{}",
+        text(&g)
+    );
+    assert_eq!(read(&file), b"x");
+
+    // A directory holding something that is not a scene is never replaced.
+    let precious = root.path().join("precious");
+    std::fs::create_dir(&precious).unwrap();
+    std::fs::write(precious.join("notes.txt"), "keep me").unwrap();
+    let g = scenesmith(
+        &[
+            "generate",
+            "a kitchen with a table",
+            "--out",
+            precious.to_str().unwrap(),
+        ],
+        &[],
+    );
+    assert_eq!(g.status.code(), Some(1), "{}", text(&g));
+    assert!(String::from_utf8_lossy(&g.stderr).contains("not a scenesmith scene directory"));
+    assert_eq!(read(&precious.join("notes.txt")), b"keep me");
+}
+
+/// Every entry of `dir` (names only), to prove nothing half-written was left behind.
+fn listing(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn missing_bridge_is_a_clear_error_and_writes_nothing() {
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("scene");
+    let g = scenesmith(
+        &[
+            "generate",
+            "a kitchen with a table",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &[("SCENESMITH_PYTHON", "/nonexistent/python")],
+    );
+    assert_eq!(g.status.code(), Some(1), "{}", text(&g));
+    let err = String::from_utf8_lossy(&g.stderr);
+    assert!(err.contains("scripts/setup.sh"), "{err}");
+    assert!(
+        listing(root.path()).is_empty(),
+        "{:?}",
+        listing(root.path())
+    );
+}
+
+#[test]
+fn bridge_killed_mid_request_keeps_previous_scene() {
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("scene");
+    let first = scenesmith(
+        &[
+            "generate",
+            "a kitchen with a table",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &[],
+    );
+    assert!(first.status.success(), "{}", text(&first));
+    let before = read(&out.join("scene.json"));
+
+    // The bridge is SIGKILLed on every collision_report: one restart, one retry, then a clear
+    // error; the previous scene is untouched and no staging directory is left behind.
+    let g = scenesmith(
+        &[
+            "generate",
+            "an office with a shelf and books",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &[("SCENESMITH_BRIDGE_CRASH_ON", "collision_report")],
+    );
+    assert_eq!(g.status.code(), Some(1), "{}", text(&g));
+    let err = String::from_utf8_lossy(&g.stderr);
+    assert!(err.contains("died during `collision_report`"), "{err}");
+    assert_eq!(read(&out.join("scene.json")), before);
+    assert_eq!(listing(root.path()), vec!["scene".to_string()]);
+
+    // Killed once: the request is retried on a fresh bridge and the run succeeds.
+    let marker = root.path().join("crashed-once");
+    let g = scenesmith(
+        &[
+            "generate",
+            "an office with a shelf and books",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &[
+            ("SCENESMITH_BRIDGE_CRASH_ON", "collision_report"),
+            ("SCENESMITH_BRIDGE_CRASH_ONCE", marker.to_str().unwrap()),
+        ],
+    );
+    assert!(g.status.success(), "{}", text(&g));
+    assert!(marker.exists(), "the bridge did crash once");
+    assert_ne!(read(&out.join("scene.json")), before);
+}
+
+#[test]
+fn check_fails_on_a_scene_with_penetration() {
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("scene");
+    let g = scenesmith(
+        &[
+            "generate",
+            "a kitchen with a table and four chairs",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &[],
+    );
+    assert!(g.status.success(), "{}", text(&g));
+    // Move the first chair into the table in the directives, as a user's edit might.
+    let scene: serde_json::Value = serde_json::from_slice(&read(&out.join("scene.json"))).unwrap();
+    let table = scene["objects"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|o| o["category"] == "table")
+        .unwrap();
+    let t = &table["world_from_object"]["xyz"];
+    let yaml = String::from_utf8(read(&out.join("scene.dmd.yaml"))).unwrap();
+    let start = yaml.find("name: chair_0").unwrap();
+    let tr = yaml[start..].find("translation: [").unwrap() + start + "translation: [".len();
+    let end = yaml[tr..].find(']').unwrap() + tr;
+    let edited = format!("{}{}, {}, 0.0{}", &yaml[..tr], t[0], t[1], &yaml[end..]);
+    std::fs::write(out.join("scene.dmd.yaml"), edited).unwrap();
+    let c = scenesmith(&["check", out.to_str().unwrap(), "--json"], &[]);
+    assert_eq!(c.status.code(), Some(1), "{}", text(&c));
+    let report: serde_json::Value = serde_json::from_slice(&c.stdout).unwrap();
+    assert!(report["col_percent"].as_f64().unwrap() > 0.0);
+    assert!(
+        !report["problems"].as_array().unwrap().is_empty(),
+        "pose mismatch reported"
+    );
+}
