@@ -40,15 +40,30 @@ pub enum AssetError {
     },
 }
 
-/// One visual part of a link: a mesh in the link frame with a colour.
+/// An RGBA8 image used as a base-colour texture.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Texture {
+    /// File stem, unique within an asset (`[a-z0-9_]`), e.g. `rug_pattern`.
+    pub name: String,
+    /// Width, pixels.
+    pub width: u32,
+    /// Height, pixels.
+    pub height: u32,
+    /// Row-major RGBA, 4 bytes per pixel, top row first.
+    pub rgba: std::sync::Arc<Vec<u8>>,
+}
+
+/// One visual part of a link: a mesh in the link frame with a colour and optional texture.
 #[derive(Debug, Clone, PartialEq)]
 pub struct VisualPart {
     /// Part name (unique within the link).
     pub name: String,
     /// Mesh in the link frame.
     pub mesh: TriMesh,
-    /// Linear RGBA base colour.
+    /// Linear RGBA base colour (multiplies the texture when there is one).
     pub color: [f64; 4],
+    /// Base-colour texture, sampled with the mesh's `uvs`.
+    pub texture: Option<Texture>,
 }
 
 /// Contact parameters of a link's colliders.
@@ -326,6 +341,7 @@ impl LinkBuilder {
             name,
             mesh: mesh::box_mesh(center, size),
             color: [color[0], color[1], color[2], 1.0],
+            texture: None,
         });
         Ok(self)
     }
@@ -346,6 +362,7 @@ impl LinkBuilder {
             name,
             mesh: mesh::cylinder_mesh(center_xy[0], center_xy[1], radius, z0, z1, 24),
             color: [color[0], color[1], color[2], 1.0],
+            texture: None,
         });
         Ok(self)
     }
@@ -357,6 +374,19 @@ impl LinkBuilder {
             name,
             mesh,
             color: [color[0], color[1], color[2], 1.0],
+            texture: None,
+        });
+        self
+    }
+
+    /// A visual-only textured mesh (link frame); the mesh must carry `uvs`.
+    pub fn add_textured_visual(&mut self, mesh: TriMesh, texture: Texture) -> &mut Self {
+        let name = self.next_part_name();
+        self.visuals.push(VisualPart {
+            name,
+            mesh,
+            color: [1.0, 1.0, 1.0, 1.0],
+            texture: Some(texture),
         });
         self
     }

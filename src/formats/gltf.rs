@@ -14,7 +14,7 @@ const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 const FLOAT: u32 = 5126;
 const UNSIGNED_INT: u32 = 5125;
 
-/// Accumulates meshes, materials and nodes, then writes `.gltf` or `.glb`.
+/// Accumulates meshes, materials, textures and nodes, then writes `.gltf` or `.glb`.
 #[derive(Debug, Default)]
 pub struct GltfBuilder {
     bin: Vec<u8>,
@@ -22,7 +22,14 @@ pub struct GltfBuilder {
     accessors: Vec<Value>,
     meshes: Vec<Value>,
     materials: Vec<Value>,
-    material_keys: Vec<[u32; 4]>,
+    material_keys: Vec<([u32; 4], Option<String>)>,
+    images: Vec<Value>,
+    textures: Vec<Value>,
+    texture_names: Vec<String>,
+    /// PNG files referenced by URI (when not embedding), `(file name, bytes)`.
+    image_files: Vec<(String, Vec<u8>)>,
+    embed_images: bool,
+    samplers_used: bool,
     nodes: Vec<Value>,
     roots: Vec<usize>,
 }
@@ -33,9 +40,55 @@ fn to_y_up(v: [f64; 3]) -> [f32; 3] {
 }
 
 impl GltfBuilder {
-    /// An empty builder.
+    /// An empty builder whose textures become separate PNG files (for `.gltf`).
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// An empty builder whose textures are embedded in the binary buffer (for `.glb`).
+    pub fn new_embedded() -> Self {
+        GltfBuilder {
+            embed_images: true,
+            ..Self::default()
+        }
+    }
+
+    /// PNG files the `.gltf` refers to, `(file name, bytes)`; empty when embedding.
+    pub fn image_files(&self) -> &[(String, Vec<u8>)] {
+        &self.image_files
+    }
+
+    fn texture(&mut self, tex: &crate::assets::Texture) -> Option<usize> {
+        if let Some(i) = self.texture_names.iter().position(|n| *n == tex.name) {
+            return Some(i);
+        }
+        let png = crate::util::png::encode_rgba(tex.width, tex.height, &tex.rgba).ok()?;
+        let image = if self.embed_images {
+            let view = self.push_view_untargeted(&png);
+            json!({"bufferView": view, "mimeType": "image/png", "name": tex.name})
+        } else {
+            let file = format!("{}.png", crate::scene::sanitize_name(&tex.name));
+            self.image_files.push((file.clone(), png));
+            json!({"uri": file, "name": tex.name})
+        };
+        // One repeating, linearly filtered sampler serves every texture.
+        self.samplers_used = true;
+        self.images.push(image);
+        self.textures
+            .push(json!({"source": self.images.len() - 1, "sampler": 0}));
+        self.texture_names.push(tex.name.clone());
+        Some(self.textures.len() - 1)
+    }
+
+    fn push_view_untargeted(&mut self, bytes: &[u8]) -> usize {
+        while !self.bin.len().is_multiple_of(4) {
+            self.bin.push(0);
+        }
+        let offset = self.bin.len();
+        self.bin.extend_from_slice(bytes);
+        self.buffer_views
+            .push(json!({"buffer": 0, "byteOffset": offset, "byteLength": bytes.len()}));
+        self.buffer_views.len() - 1
     }
 
     fn push_view(&mut self, bytes: &[u8], target: u32) -> usize {
@@ -50,8 +103,11 @@ impl GltfBuilder {
         self.buffer_views.len() - 1
     }
 
-    fn material(&mut self, color: [f64; 4]) -> usize {
-        let key = color.map(|c| (c.clamp(0.0, 1.0) * 1e4).round() as u32);
+    fn material(&mut self, color: [f64; 4], texture: Option<usize>) -> usize {
+        let key = (
+            color.map(|c| (c.clamp(0.0, 1.0) * 1e4).round() as u32),
+            texture.map(|t| self.texture_names[t].clone()),
+        );
         if let Some(i) = self.material_keys.iter().position(|k| *k == key) {
             return i;
         }
@@ -67,6 +123,9 @@ impl GltfBuilder {
         });
         if c[3] < 1.0 {
             m["alphaMode"] = json!("BLEND");
+        }
+        if let Some(t) = texture {
+            m["pbrMetallicRoughness"]["baseColorTexture"] = json!({"index": t, "texCoord": 0});
         }
         self.materials.push(m);
         self.material_keys.push(key);
@@ -114,9 +173,30 @@ impl GltfBuilder {
                 "count": part.mesh.triangles.len() * 3, "type": "SCALAR"
             }));
             let ia = self.accessors.len() - 1;
-            let mat = self.material(part.color);
+            let mut attributes = json!({"POSITION": pa, "NORMAL": na});
+            let textured = part.mesh.uvs.len() == part.mesh.positions.len();
+            let texture = match (&part.texture, textured) {
+                (Some(tex), true) => self.texture(tex),
+                _ => None,
+            };
+            if texture.is_some() {
+                let uv_bytes: Vec<u8> = part
+                    .mesh
+                    .uvs
+                    .iter()
+                    .flat_map(|uv| [uv[0] as f32, uv[1] as f32])
+                    .flat_map(|v| v.to_le_bytes())
+                    .collect();
+                let uv_view = self.push_view(&uv_bytes, ARRAY_BUFFER);
+                self.accessors.push(json!({
+                    "bufferView": uv_view, "componentType": FLOAT,
+                    "count": part.mesh.uvs.len(), "type": "VEC2"
+                }));
+                attributes["TEXCOORD_0"] = json!(self.accessors.len() - 1);
+            }
+            let mat = self.material(part.color, texture);
             primitives.push(json!({
-                "attributes": {"POSITION": pa, "NORMAL": na},
+                "attributes": attributes,
                 "indices": ia,
                 "material": mat,
                 "mode": 4
@@ -165,7 +245,7 @@ impl GltfBuilder {
         if let Some(u) = uri {
             buffer["uri"] = json!(u);
         }
-        json!({
+        let mut doc = json!({
             "asset": {"version": "2.0", "generator": concat!("scenesmith ", env!("CARGO_PKG_VERSION"))},
             "scene": 0,
             "scenes": [{"nodes": self.roots}],
@@ -175,7 +255,15 @@ impl GltfBuilder {
             "accessors": self.accessors,
             "bufferViews": self.buffer_views,
             "buffers": [buffer],
-        })
+        });
+        if self.samplers_used {
+            // 10497 = REPEAT, 9729 = LINEAR, 9987 = LINEAR_MIPMAP_LINEAR.
+            doc["samplers"] =
+                json!([{"wrapS": 10497, "wrapT": 10497, "magFilter": 9729, "minFilter": 9987}]);
+            doc["images"] = json!(self.images);
+            doc["textures"] = json!(self.textures);
+        }
+        doc
     }
 
     /// `.gltf` JSON text referring to the binary buffer at `bin_uri`, and the buffer bytes.
@@ -209,13 +297,29 @@ impl GltfBuilder {
     }
 }
 
-/// The `.gltf` text and `.bin` bytes of one link's visual parts (a single node, no transform).
-pub fn link_visual_gltf(name: &str, parts: &[VisualPart], bin_uri: &str) -> (String, Vec<u8>) {
+/// One link's visuals as glTF: the `.gltf` text, the `.bin` bytes, and the PNG texture files
+/// it refers to.
+pub struct LinkGltf {
+    /// `.gltf` JSON text.
+    pub gltf: String,
+    /// Binary buffer.
+    pub bin: Vec<u8>,
+    /// Texture images `(file name, PNG bytes)`, referenced relative to the `.gltf`.
+    pub images: Vec<(String, Vec<u8>)>,
+}
+
+/// The glTF of one link's visual parts (a single node, no transform).
+pub fn link_visual_gltf(name: &str, parts: &[VisualPart], bin_uri: &str) -> LinkGltf {
     let mut b = GltfBuilder::new();
     let mesh = b.add_mesh(name, parts);
     let node = b.add_node(name, Some(mesh), None, vec![]);
     b.add_root(node);
-    b.to_gltf(bin_uri)
+    let (gltf, bin) = b.to_gltf(bin_uri);
+    LinkGltf {
+        gltf,
+        bin,
+        images: b.image_files().to_vec(),
+    }
 }
 
 #[cfg(test)]
@@ -228,12 +332,56 @@ mod tests {
             name: "p".into(),
             mesh: box_mesh([0.0, 0.0, 0.5], [1.0, 2.0, 1.0]),
             color: [0.5, 0.4, 0.3, 1.0],
+            texture: None,
+        }
+    }
+
+    fn textured_part() -> VisualPart {
+        let rgba: Vec<u8> = (0..16)
+            .flat_map(|i| [i * 16, 255 - i * 16, 128, 255])
+            .collect();
+        VisualPart {
+            name: "t".into(),
+            mesh: box_mesh([0.0, 0.0, 0.5], [1.0, 1.0, 1.0]).with_box_uvs(0.5),
+            color: [1.0; 4],
+            texture: Some(crate::assets::Texture {
+                name: "checker".into(),
+                width: 4,
+                height: 4,
+                rgba: std::sync::Arc::new(rgba),
+            }),
         }
     }
 
     #[test]
+    fn textures_become_png_files_or_embedded_views() {
+        let link = link_visual_gltf("rug", &[textured_part(), part()], "rug.bin");
+        assert_eq!(link.images.len(), 1);
+        assert_eq!(link.images[0].0, "checker.png");
+        let doc: Value = serde_json::from_str(&link.gltf).unwrap();
+        assert_eq!(doc["images"][0]["uri"], "checker.png");
+        assert_eq!(
+            doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"],
+            0
+        );
+        assert!(doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"].is_u64());
+        assert!(doc["meshes"][0]["primitives"][1]["attributes"]["TEXCOORD_0"].is_null());
+
+        let mut b = GltfBuilder::new_embedded();
+        let m = b.add_mesh("m", &[textured_part()]);
+        let n = b.add_node("n", Some(m), None, vec![]);
+        b.add_root(n);
+        let glb = b.to_glb();
+        let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+        let doc: Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
+        assert_eq!(doc["images"][0]["mimeType"], "image/png");
+        assert!(doc["images"][0]["bufferView"].is_u64());
+    }
+
+    #[test]
     fn gltf_bounds_are_y_up() {
-        let (text, bin) = link_visual_gltf("body", &[part()], "body.bin");
+        let link = link_visual_gltf("body", &[part()], "body.bin");
+        let (text, bin) = (link.gltf, link.bin);
         let doc: Value = serde_json::from_str(&text).unwrap();
         assert_eq!(
             doc["buffers"][0]["byteLength"].as_u64().unwrap() as usize,

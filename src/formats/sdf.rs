@@ -70,15 +70,20 @@ pub fn asset_files(asset: &Asset) -> Vec<AssetFile> {
         if !link.visuals.is_empty() {
             let gltf_name = format!("{}.gltf", link.name);
             let bin_name = format!("{}.bin", link.name);
-            let (text, bin) = link_visual_gltf(&link.name, &link.visuals, &bin_name);
+            let g = link_visual_gltf(&link.name, &link.visuals, &bin_name);
             files.push(AssetFile {
                 name: gltf_name.clone(),
-                bytes: text.into_bytes(),
+                bytes: g.gltf.into_bytes(),
             });
             files.push(AssetFile {
                 name: bin_name,
-                bytes: bin,
+                bytes: g.bin,
             });
+            for (name, bytes) in g.images {
+                if !files.iter().any(|f| f.name == name) {
+                    files.push(AssetFile { name, bytes });
+                }
+            }
             el.push(El::new("visual").attr("name", "visual").child(
                 El::new("geometry").child(El::new("mesh").child(El::leaf("uri", &gltf_name))),
             ));

@@ -18,6 +18,9 @@ pub struct TriMesh {
     pub normals: Vec<[f64; 3]>,
     /// Triangles as indices into `positions`.
     pub triangles: Vec<[u32; 3]>,
+    /// Texture coordinates, one per vertex, or empty when the mesh is untextured. `(0, 0)` is
+    /// the top-left of the image (glTF's convention).
+    pub uvs: Vec<[f64; 2]>,
 }
 
 impl TriMesh {
@@ -34,6 +37,16 @@ impl TriMesh {
     /// Appends `other` to `self`.
     pub fn append(&mut self, other: &TriMesh) {
         let offset = self.positions.len() as u32;
+        // Keep uvs aligned with positions when only one side has them.
+        if !other.uvs.is_empty() || !self.uvs.is_empty() {
+            self.uvs.resize(self.positions.len(), [0.0, 0.0]);
+            if other.uvs.is_empty() {
+                self.uvs
+                    .extend(std::iter::repeat_n([0.0, 0.0], other.positions.len()));
+            } else {
+                self.uvs.extend_from_slice(&other.uvs);
+            }
+        }
         self.positions.extend_from_slice(&other.positions);
         self.normals.extend_from_slice(&other.normals);
         self.triangles.extend(
@@ -66,6 +79,7 @@ impl TriMesh {
             positions,
             normals,
             triangles: self.triangles.clone(),
+            uvs: self.uvs.clone(),
         }
     }
 
@@ -89,7 +103,35 @@ impl TriMesh {
             positions,
             normals,
             triangles: self.triangles.clone(),
+            uvs: self.uvs.clone(),
         }
+    }
+
+    /// The mesh with texture coordinates from box mapping: each triangle is projected onto the
+    /// plane most facing its normal, one texture repeat per `tile_m` metres. Suits tileable
+    /// textures (floors, walls, fabric, wood grain).
+    pub fn with_box_uvs(&self, tile_m: f64) -> TriMesh {
+        let mut out = TriMesh::new();
+        let tile = if tile_m > 1e-9 { tile_m } else { 1.0 };
+        for t in &self.triangles {
+            let p = t.map(|i| Vector3::from(self.positions[i as usize]));
+            let n = (p[1] - p[0]).cross(&(p[2] - p[0]));
+            let (a, b) = if n.z.abs() >= n.x.abs() && n.z.abs() >= n.y.abs() {
+                (0, 1)
+            } else if n.x.abs() >= n.y.abs() {
+                (1, 2)
+            } else {
+                (0, 2)
+            };
+            let base = out.positions.len() as u32;
+            for (k, &i) in t.iter().enumerate() {
+                out.positions.push(self.positions[i as usize]);
+                out.normals.push(self.normals[i as usize]);
+                out.uvs.push([p[k][a] / tile, 1.0 - p[k][b] / tile]);
+            }
+            out.triangles.push([base, base + 1, base + 2]);
+        }
+        out
     }
 
     /// Axis-aligned bounds `(min, max)`; `None` for an empty mesh.
