@@ -3,9 +3,11 @@
 
 pub mod directives;
 pub mod gltf;
+pub mod gltf_read;
 pub mod obj;
 pub mod scene_dir;
 pub mod sdf;
+pub mod sdf_read;
 pub mod xml;
 
 /// What can go wrong writing or reading scene files.
@@ -17,6 +19,16 @@ pub enum FormatError {
     /// YAML serialisation failed.
     #[error("could not write YAML: {0}")]
     Yaml(String),
+    /// An asset folder of a scene could not be read back.
+    #[error("could not read asset {asset} from {dir}: {reason}")]
+    AssetRead {
+        /// Asset id.
+        asset: String,
+        /// Its folder.
+        dir: std::path::PathBuf,
+        /// What is wrong.
+        reason: String,
+    },
     /// `scene.json` could not be read.
     #[error("could not read {path}: {reason}")]
     SceneJson {

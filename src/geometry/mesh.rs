@@ -330,6 +330,25 @@ pub fn enclosed_volume(mesh: &TriMesh) -> f64 {
         .sum()
 }
 
+/// Recomputes smooth per-vertex normals as area-weighted face normals.
+pub fn recompute_normals(mesh: &mut TriMesh) {
+    let mut acc = vec![Vector3::zeros(); mesh.positions.len()];
+    for t in &mesh.triangles {
+        let p = t.map(|i| Vector3::from(mesh.positions[i as usize]));
+        let n = (p[1] - p[0]).cross(&(p[2] - p[0]));
+        for &i in t {
+            acc[i as usize] += n;
+        }
+    }
+    mesh.normals = acc
+        .into_iter()
+        .map(|n| {
+            let n = n.try_normalize(1e-20).unwrap_or(Vector3::z());
+            [n.x, n.y, n.z]
+        })
+        .collect();
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
