@@ -53,6 +53,8 @@ pub struct StageSummary {
     pub critique: Option<Critique>,
     /// Critique rounds run.
     pub rounds: usize,
+    /// Wall time of the stage (agents and tools), seconds; not written to `scene.json`.
+    pub seconds: f64,
 }
 
 fn stage_config(kind: StageKind) -> StageConfig {
@@ -240,6 +242,7 @@ fn run_one(
         toolbox: &tools,
         brief: &text,
     };
+    let t0 = std::time::Instant::now();
     let outcome = run_stage(
         &spec,
         state,
@@ -255,6 +258,7 @@ fn run_one(
         entity,
         critique: outcome.critique.clone(),
         rounds: outcome.history.len(),
+        seconds: t0.elapsed().as_secs_f64(),
     });
     Ok(outcome.state.scene)
 }
