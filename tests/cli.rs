@@ -269,3 +269,35 @@ fn check_fails_on_a_scene_with_penetration() {
         "pose mismatch reported"
     );
 }
+
+/// A full disk: the run fails with a clear error, the previous scene stays, nothing
+/// half-written is left. The disk is a 48 KiB tmpfs in a private mount namespace.
+#[test]
+fn full_disk_is_a_clear_error_and_loses_nothing() {
+    let root = tempfile::tempdir().unwrap();
+    let disk = root.path().join("disk");
+    std::fs::create_dir(&disk).unwrap();
+    let bin = env!("CARGO_BIN_EXE_scenesmith");
+    let script = format!(
+        "set -e; mount -t tmpfs -o size=48k tmpfs {disk}; mkdir {disk}/scene; echo old > {disk}/scene/scene.json; \
+         set +e; SCENESMITH_HOME={home} {bin} generate 'A library with four shelves full of books and a table' --out {disk}/scene --no-check; \
+         echo \"exit=$?\"; ls -a {disk}; cat {disk}/scene/scene.json",
+        disk = disk.display(),
+        home = common::home().display(),
+    );
+    let out = std::process::Command::new("unshare")
+        .args(["--user", "--map-root-user", "--mount", "sh", "-c", &script])
+        .output()
+        .expect("unshare runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stdout.contains("exit=1"),
+        "stdout:\n{stdout}\nstderr:\n{stderr}"
+    );
+    assert!(stderr.contains("No space left on device"), "{stderr}");
+    assert!(stderr.contains("left as it was"), "{stderr}");
+    // Only the previous scene remains, with its content.
+    let entries: Vec<&str> = stdout.lines().filter(|l| !l.starts_with("exit=")).collect();
+    assert_eq!(entries, vec![".", "..", "scene", "old"], "{stdout}");
+}
