@@ -433,6 +433,9 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
     // Fails before any work when the output cannot be written.
     let staging = StagingDir::new(&opts.out)?;
     let package = package_name_for(staging.target());
+    if opts.drake_check {
+        crate::physics::bridge::BridgeConfig::from_env().preflight()?;
+    }
 
     let (backend, transport) = make_backend(&opts.backend, staging.path())?;
     let mut checkpoints = DirCheckpoints::open(staging.target(), &fingerprint(opts), opts.resume);
@@ -451,7 +454,10 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
     });
     let (out, state, report, rust_pairs, check) = match finished {
         Ok(v) => v,
-        Err(e) if checkpoints.finished().is_empty() => return Err(e),
+        Err(e) if checkpoints.finished().is_empty() => {
+            checkpoints.clear();
+            return Err(e);
+        }
         Err(e) => {
             return Err(PipelineError::Resumable {
                 finished: checkpoints.finished().len(),

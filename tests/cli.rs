@@ -210,7 +210,12 @@ fn bridge_killed_mid_request_keeps_previous_scene() {
     let err = String::from_utf8_lossy(&g.stderr);
     assert!(err.contains("died during `collision_report`"), "{err}");
     assert_eq!(read(&out.join("scene.json")), before);
-    assert_eq!(listing(root.path()), vec!["scene".to_string()]);
+    // The finished stages are kept for `--resume`, and the error says so; nothing else.
+    assert!(err.contains("--resume"), "{err}");
+    assert_eq!(
+        listing(root.path()),
+        vec![".scene.checkpoints".to_string(), "scene".to_string()]
+    );
 
     // Killed once: the request is retried on a fresh bridge and the run succeeds.
     let marker = root.path().join("crashed-once");
@@ -297,9 +302,18 @@ fn full_disk_is_a_clear_error_and_loses_nothing() {
     );
     assert!(stderr.contains("No space left on device"), "{stderr}");
     assert!(stderr.contains("left as it was"), "{stderr}");
-    // Only the previous scene remains, with its content.
+    // Only the previous scene remains, with its content (and the checkpoints of finished
+    // stages when they fitted on the disk: then the error points at `--resume`).
     let entries: Vec<&str> = stdout.lines().filter(|l| !l.starts_with("exit=")).collect();
+    let kept_checkpoints = entries.contains(&".scene.checkpoints");
+    let entries: Vec<&str> = entries
+        .into_iter()
+        .filter(|l| *l != ".scene.checkpoints")
+        .collect();
     assert_eq!(entries, vec![".", "..", "scene", "old"], "{stdout}");
+    if kept_checkpoints {
+        assert!(stderr.contains("--resume"), "{stderr}");
+    }
 }
 
 /// A run that fails after its stages (here: the Drake bridge dies on every check) keeps

@@ -120,6 +120,17 @@ impl BridgeConfig {
             env: Vec::new(),
         }
     }
+
+    /// Fails fast, before any work, when the interpreter the bridge needs is missing.
+    pub fn preflight(&self) -> Result<(), BridgeError> {
+        if self.python.exists() {
+            Ok(())
+        } else {
+            Err(BridgeError::PythonMissing {
+                path: self.python.clone(),
+            })
+        }
+    }
 }
 
 /// The bridge's handshake line.
@@ -171,11 +182,7 @@ pub struct Bridge {
 }
 
 fn spawn(config: &BridgeConfig) -> Result<(Process, Hello), BridgeError> {
-    if !config.python.exists() {
-        return Err(BridgeError::PythonMissing {
-            path: config.python.clone(),
-        });
-    }
+    config.preflight()?;
     let mut cmd = Command::new(&config.python);
     cmd.arg("-m")
         .arg("drake_bridge")
