@@ -54,6 +54,9 @@ pub enum PipelineError {
     /// The Drake bridge failed.
     #[error(transparent)]
     Bridge(#[from] BridgeError),
+    /// Rendering the views failed.
+    #[error(transparent)]
+    Render(#[from] crate::render::RenderError),
     /// The written scene does not load or is not collision-free.
     #[error("scene check failed: {0}")]
     CheckFailed(String),
@@ -70,6 +73,8 @@ pub struct GenerateOptions {
     pub out: PathBuf,
     /// Run the Drake check before committing the output.
     pub drake_check: bool,
+    /// Write the annotated views into `<out>/renders/`.
+    pub render: bool,
 }
 
 /// Wall time per step, seconds.
@@ -237,6 +242,14 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
     timed(&mut timings, "write", || {
         scene_dir::write_scene_dir(staging.path(), &state)
     })?;
+
+    // --- renders (src/render): top.png and per-room views into <out>/renders/ ---
+    if opts.render {
+        timed(&mut timings, "render", || {
+            crate::render::write_standard_views(staging.path(), &state)
+        })?;
+    }
+    // --- end renders ---
 
     let check = if opts.drake_check {
         let summary = timed(

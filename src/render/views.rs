@@ -1,0 +1,402 @@
+//! The standard views: per-room perspective views from the corners (walls between the camera
+//! and the room cut away, no ceiling, objects labelled), a three-quarter preview of one asset,
+//! contact sheets, and [`write_standard_views`], which writes the plan and the room views of a
+//! scene into `renders/`.
+
+use std::path::{Path, PathBuf};
+
+use nalgebra::{Point3, Vector2};
+
+use super::RenderError;
+use super::camera::{Camera, fit_perspective};
+use super::image::Image;
+use super::labels::{self, Label};
+use super::plan::{PlanOptions, plan_view};
+use super::raster::{self, DrawItem, RasterOptions};
+use super::scene::{RenderMesh, RenderScene, Role};
+use super::text::{draw_text, measure};
+use crate::assets::Asset;
+use crate::scene::{ObjectKind, Room};
+use crate::stages::SceneState;
+
+/// Options of the per-room perspective views.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RoomViewOptions {
+    /// Image width, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Vertical field of view, degrees.
+    pub fov_y_deg: f64,
+    /// Camera height above the floor, metres.
+    pub eye_height_m: f64,
+    /// Samples per pixel along each axis.
+    pub supersample: u32,
+    /// Label visible objects with their ids.
+    pub labels: bool,
+}
+
+impl Default for RoomViewOptions {
+    fn default() -> Self {
+        RoomViewOptions {
+            width: 1280,
+            height: 960,
+            fov_y_deg: 60.0,
+            eye_height_m: 1.6,
+            supersample: 2,
+            labels: true,
+        }
+    }
+}
+
+/// Corners of a floor polygon that a camera can look in from (convex corners), with the unit
+/// bisector pointing into the room.
+fn convex_corners(ring: &[[f64; 2]]) -> Vec<([f64; 2], [f64; 2])> {
+    let n = ring.len();
+    if n < 3 {
+        return Vec::new();
+    }
+    let ccw = crate::geometry::polygon::signed_area(ring) >= 0.0;
+    let mut out = Vec::new();
+    for k in 0..n {
+        let p = Vector2::from(ring[k]);
+        let a = Vector2::from(ring[(k + n - 1) % n]);
+        let b = Vector2::from(ring[(k + 1) % n]);
+        let (ea, eb) = (p - a, b - p);
+        let cross = ea.x * eb.y - ea.y * eb.x;
+        let convex = if ccw { cross > 1e-9 } else { cross < -1e-9 };
+        if !convex {
+            continue;
+        }
+        let (Some(to_a), Some(to_b)) = ((a - p).try_normalize(1e-12), (b - p).try_normalize(1e-12))
+        else {
+            continue;
+        };
+        if let Some(d) = (to_a + to_b).try_normalize(1e-12) {
+            out.push((ring[k], [d.x, d.y]));
+        }
+    }
+    // More than four corners (an L or U room): keep four spread around the polygon.
+    if out.len() > 4 {
+        let m = out.len();
+        out = (0..4).map(|i| out[i * m / 4]).collect();
+    }
+    out
+}
+
+fn centroid(ring: &[[f64; 2]]) -> [f64; 2] {
+    let n = ring.len().max(1) as f64;
+    let s = ring
+        .iter()
+        .fold([0.0, 0.0], |a, p| [a[0] + p[0], a[1] + p[1]]);
+    [s[0] / n, s[1] / n]
+}
+
+/// True when `wall` (of `rooms[wall_room]`) stands between the camera and the viewed room: its
+/// centre line separates the eye from the room's centre, or the eye is (nearly) inside it.
+fn wall_is_between(
+    rooms: &[Room],
+    wall_room: usize,
+    wall: usize,
+    eye: [f64; 2],
+    center: [f64; 2],
+) -> bool {
+    let Some(w) = rooms.get(wall_room).and_then(|r| r.walls.get(wall)) else {
+        return false;
+    };
+    let wall_from_world = w.world_from_wall().inverse();
+    let y = |p: [f64; 2]| {
+        wall_from_world
+            .transform_point(&Point3::new(p[0], p[1], 0.0))
+            .y
+    };
+    let (ye, yc) = (y(eye), y(center));
+    ye.abs() < w.thickness / 2.0 + 0.05 || ye * yc < 0.0
+}
+
+/// Perspective views of one room from its corners at eye height, looking in; returns
+/// `(name, image)` pairs named `<room>_view_<k>`.
+pub fn room_views(
+    rs: &RenderScene,
+    room_index: usize,
+    opts: &RoomViewOptions,
+) -> Result<Vec<(String, Image)>, RenderError> {
+    let room = rs
+        .rooms
+        .get(room_index)
+        .ok_or_else(|| RenderError::Empty(format!("no room with index {room_index}")))?;
+    let center = centroid(&room.floor_polygon);
+    let in_room = |m: &RenderMesh| -> bool {
+        match m.object.and_then(|o| rs.objects.get(o)) {
+            Some(o) if o.kind == ObjectKind::Architecture => true,
+            Some(o) => o.room == room.id,
+            None => true,
+        }
+    };
+    // Points the view must show: the floor and every object of the room.
+    let mut fit_pts: Vec<[f64; 3]> = room
+        .floor_polygon
+        .iter()
+        .map(|p| [p[0], p[1], 0.0])
+        .collect();
+    for o in rs
+        .objects
+        .iter()
+        .filter(|o| o.room == room.id && o.kind != ObjectKind::Architecture)
+    {
+        let [a, b] = o.bounds;
+        for i in 0..8 {
+            fit_pts.push([
+                if i & 1 == 0 { a[0] } else { b[0] },
+                if i & 2 == 0 { a[1] } else { b[1] },
+                if i & 4 == 0 { a[2] } else { b[2] },
+            ]);
+        }
+    }
+    let aspect = f64::from(opts.width) / f64::from(opts.height);
+    let mut out = Vec::new();
+    for (k, (corner, inward)) in convex_corners(&room.floor_polygon).into_iter().enumerate() {
+        let camera = corner_camera(corner, inward, center, &fit_pts, opts, aspect)?;
+        let eye = [camera.eye.x, camera.eye.y];
+        let items: Vec<DrawItem<'_>> = rs
+            .meshes
+            .iter()
+            .filter(|m| in_room(m))
+            .filter(|m| match m.role {
+                Role::Ceiling => false,
+                Role::Wall { room: r, wall } => !wall_is_between(&rs.rooms, r, wall, eye, center),
+                _ => true,
+            })
+            .map(DrawItem::new)
+            .collect();
+        let mut ropts = RasterOptions::new(opts.width, opts.height);
+        ropts.supersample = opts.supersample;
+        ropts.background = [0.80, 0.81, 0.83];
+        let r = raster::render(&items, &camera, &ropts, rs.objects.len())?;
+        let mut img = r.image;
+        let caption = format!(
+            "{} ({}), view {k} from corner ({:.1}, {:.1})",
+            room.room_type, room.id, corner[0], corner[1]
+        );
+        let cap_box = draw_caption(&mut img, &caption)?;
+        if opts.labels {
+            let mut ls = Vec::new();
+            for (oi, o) in rs.objects.iter().enumerate() {
+                let Some(cov) = r.coverage.get(oi) else {
+                    continue;
+                };
+                if o.kind == ObjectKind::Architecture || o.room != room.id || cov.pixels < 30.0 {
+                    continue;
+                }
+                ls.push(Label {
+                    text: o.id.clone(),
+                    anchor: cov.centroid,
+                    priority: cov.pixels,
+                    size_px: 13.0,
+                });
+            }
+            let placed = labels::place(&ls, img.width, img.height, &[cap_box])?;
+            labels::draw(&mut img, &ls, &placed)?;
+        }
+        out.push((format!("{}_view_{k}", room.id), img));
+    }
+    Ok(out)
+}
+
+/// A camera at eye height behind `corner` (along `-inward`), looking at the room centre,
+/// pulled back until `fit_pts` are in frame (at most 6 m).
+fn corner_camera(
+    corner: [f64; 2],
+    inward: [f64; 2],
+    center: [f64; 2],
+    fit_pts: &[[f64; 3]],
+    opts: &RoomViewOptions,
+    aspect: f64,
+) -> Result<Camera, RenderError> {
+    let target = [center[0], center[1], 0.5];
+    let make = |back: f64| {
+        let eye = [
+            corner[0] - inward[0] * back,
+            corner[1] - inward[1] * back,
+            opts.eye_height_m,
+        ];
+        Camera::look_at(eye, target, [0.0, 0.0, 1.0], opts.fov_y_deg)
+    };
+    let fits = |cam: &Camera| {
+        let margin = 0.04;
+        let (w, h) = (1000.0, 1000.0 / aspect);
+        fit_pts
+            .iter()
+            .all(|p| match cam.project(*p, w as u32, h as u32) {
+                Some(q) => {
+                    q[0] >= w * margin
+                        && q[0] <= w * (1.0 - margin)
+                        && q[1] >= h * margin
+                        && q[1] <= h * (1.0 - margin)
+                }
+                None => false,
+            })
+    };
+    let (mut lo, mut hi) = (0.0f64, 6.0f64);
+    if fits(&make(lo)?) {
+        return make(lo);
+    }
+    if !fits(&make(hi)?) {
+        return make(hi);
+    }
+    for _ in 0..30 {
+        let mid = (lo + hi) / 2.0;
+        if fits(&make(mid)?) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let mut cam = make(hi)?;
+    cam.near = 0.05;
+    Ok(cam)
+}
+
+/// Draws a caption box in the top-left corner; returns its box.
+fn draw_caption(img: &mut Image, text: &str) -> Result<[f64; 4], RenderError> {
+    let px = 14.0;
+    let m = measure(text, px)?;
+    let (x0, y0) = (8.0, 8.0);
+    let (x1, y1) = (
+        x0 + f64::from(m.width) + 10.0,
+        y0 + f64::from(m.height()) + 6.0,
+    );
+    img.fill_rect(
+        x0 as i64,
+        y0 as i64,
+        x1 as i64,
+        y1 as i64,
+        [250, 250, 245],
+        0.85,
+    );
+    draw_text(
+        img,
+        (x0 + 5.0) as f32,
+        y0 as f32 + 3.0 + m.ascent,
+        text,
+        px,
+        [15, 15, 20],
+    )?;
+    Ok([x0, y0, x1, y1])
+}
+
+/// A three-quarter view (front-right, from above) of one asset at zero joint positions,
+/// fitted to a `width x height` frame on a neutral background.
+pub fn asset_preview(asset: &Asset, width: u32, height: u32) -> Result<Image, RenderError> {
+    if width == 0 || height == 0 || width > raster::MAX_SIDE || height > raster::MAX_SIDE {
+        return Err(RenderError::InvalidSize { width, height });
+    }
+    let rs = RenderScene::from_asset(asset);
+    let mut pts = Vec::new();
+    for m in &rs.meshes {
+        if let Some((a, b)) = m.bounds() {
+            for i in 0..8 {
+                pts.push([
+                    if i & 1 == 0 { a[0] } else { b[0] },
+                    if i & 2 == 0 { a[1] } else { b[1] },
+                    if i & 4 == 0 { a[2] } else { b[2] },
+                ]);
+            }
+        }
+    }
+    if pts.is_empty() {
+        return Err(RenderError::Empty(format!(
+            "asset {} has no visual geometry",
+            asset.id
+        )));
+    }
+    // Asset front is +Y: look from front-right and above, towards -Y.
+    let direction = [-0.62, -1.0, -0.62];
+    let camera = fit_perspective(
+        direction,
+        [0.0, 0.0, 1.0],
+        30.0,
+        f64::from(width) / f64::from(height),
+        &pts,
+        0.1,
+    )?;
+    let items: Vec<DrawItem<'_>> = rs.meshes.iter().map(DrawItem::new).collect();
+    let mut ropts = RasterOptions::new(width, height);
+    ropts.background = [0.78, 0.79, 0.80];
+    ropts.supersample = 3;
+    Ok(raster::render(&items, &camera, &ropts, 1)?.image)
+}
+
+/// A grid of images, `columns` per row, each with its caption underneath, on white.
+pub fn contact_sheet(items: &[(String, Image)], columns: usize) -> Result<Image, RenderError> {
+    if items.is_empty() {
+        return Err(RenderError::Empty(
+            "a contact sheet needs at least one image".into(),
+        ));
+    }
+    let cols = columns.clamp(1, items.len());
+    let rows = items.len().div_ceil(cols);
+    let cell_w = items.iter().map(|(_, i)| i.width).max().unwrap_or(1);
+    let cell_h = items.iter().map(|(_, i)| i.height).max().unwrap_or(1);
+    let (pad, cap_px) = (8u32, 14.0f32);
+    let cap_h = (measure("Ag", cap_px)?.height().ceil() as u32) + 6;
+    let width = cols as u32 * (cell_w + pad) + pad;
+    let height = rows as u32 * (cell_h + cap_h + pad) + pad;
+    if width > raster::MAX_SIDE * 2 || height > raster::MAX_SIDE * 2 {
+        return Err(RenderError::InvalidSize { width, height });
+    }
+    let mut sheet = Image::new(width, height, [255, 255, 255, 255]);
+    for (i, (caption, img)) in items.iter().enumerate() {
+        let (c, r) = ((i % cols) as u32, (i / cols) as u32);
+        let x = pad + c * (cell_w + pad);
+        let y = pad + r * (cell_h + cap_h + pad);
+        let ox = x + (cell_w - img.width) / 2;
+        let oy = y + (cell_h - img.height) / 2;
+        sheet.blit(img, i64::from(ox), i64::from(oy));
+        let text = fit_text(caption, cap_px, cell_w as f32)?;
+        let m = measure(&text, cap_px)?;
+        let tx = x as f32 + (cell_w as f32 - m.width) / 2.0;
+        let ty = (y + cell_h + 3) as f32 + m.ascent;
+        draw_text(&mut sheet, tx, ty, &text, cap_px, [20, 20, 28])?;
+    }
+    Ok(sheet)
+}
+
+/// `text`, shortened with an ellipsis to fit `max_w` pixels.
+fn fit_text(text: &str, px: f32, max_w: f32) -> Result<String, RenderError> {
+    if measure(text, px)?.width <= max_w {
+        return Ok(text.to_string());
+    }
+    let chars: Vec<char> = text.chars().collect();
+    for n in (0..chars.len()).rev() {
+        let s: String = chars[..n].iter().collect::<String>() + "\u{2026}";
+        if measure(&s, px)?.width <= max_w {
+            return Ok(s);
+        }
+    }
+    Ok(String::new())
+}
+
+/// Writes `top.png` and every room's corner views (`<room>_view_<k>.png`) of `state` into
+/// `out_dir`; returns the paths written.
+pub fn write_views(out_dir: &Path, state: &SceneState) -> Result<Vec<PathBuf>, RenderError> {
+    let rs = RenderScene::from_state(state)?;
+    let mut written = Vec::new();
+    let top = plan_view(&rs, &PlanOptions::default())?;
+    let path = out_dir.join("top.png");
+    top.save_png(&path)?;
+    written.push(path);
+    for ri in 0..rs.rooms.len() {
+        for (name, img) in room_views(&rs, ri, &RoomViewOptions::default())? {
+            let path = out_dir.join(format!("{}.png", crate::scene::sanitize_name(&name)));
+            img.save_png(&path)?;
+            written.push(path);
+        }
+    }
+    Ok(written)
+}
+
+/// Writes the standard views of a scene directory's state into `dir/renders/`.
+pub fn write_standard_views(dir: &Path, state: &SceneState) -> Result<Vec<PathBuf>, RenderError> {
+    write_views(&dir.join("renders"), state)
+}
