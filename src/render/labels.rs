@@ -17,6 +17,9 @@ pub struct Label {
     pub priority: f64,
     /// Text size, pixels.
     pub size_px: f32,
+    /// Pixel box of the thing labelled, when known: labels keep off small things (their own
+    /// included) so the label does not hide what it names.
+    pub target: Option<[f64; 4]>,
 }
 
 /// Where a label went.
@@ -48,7 +51,18 @@ pub fn place(
     let mut order: Vec<usize> = (0..labels.len()).collect();
     // Stable: equal priorities keep input order, so placement is deterministic.
     order.sort_by(|&a, &b| labels[b].priority.total_cmp(&labels[a].priority));
-    let mut taken: Vec<[f64; 4]> = obstacles.to_vec();
+    // (box, weight): other labels and the obstacles weigh 1, small labelled things less.
+    let mut taken: Vec<([f64; 4], f64)> = obstacles.iter().map(|o| (*o, 1.0)).collect();
+    for l in labels {
+        let Some(t) = l.target else {
+            continue;
+        };
+        let m = measure(&l.text, l.size_px)?;
+        let label_area = (f64::from(m.width) + 2.0 * PAD_X) * (f64::from(m.height()) + 2.0 * PAD_Y);
+        if (t[2] - t[0]) * (t[3] - t[1]) < 2.0 * label_area {
+            taken.push((t, 0.2));
+        }
+    }
     let mut out = vec![
         Placed {
             rect: [0.0; 4],
@@ -84,7 +98,7 @@ pub fn place(
             let cx = (ax + dx).clamp(bw / 2.0 + 1.0, (w - bw / 2.0 - 1.0).max(bw / 2.0));
             let cy = (ay + dy).clamp(bh / 2.0 + 1.0, (h - bh / 2.0 - 1.0).max(bh / 2.0));
             let rect = [cx - bw / 2.0, cy - bh / 2.0, cx + bw / 2.0, cy + bh / 2.0];
-            let cost: f64 = taken.iter().map(|t| overlap(&rect, t)).sum();
+            let cost: f64 = taken.iter().map(|(t, w)| w * overlap(&rect, t)).sum();
             // Prefer free spots; among overlapping ones, the least overlap, then the nearest.
             let score = cost * 1000.0 + k as f64;
             if best.as_ref().is_none_or(|b| score < b.0) {
@@ -96,7 +110,7 @@ pub fn place(
             }
         }
         if let Some((_, rect, moved)) = best {
-            taken.push(rect);
+            taken.push((rect, 1.0));
             out[i] = Placed { rect, moved };
         }
     }
@@ -154,7 +168,7 @@ pub fn draw(img: &mut Image, labels: &[Label], placed: &[Placed]) -> Result<(), 
             r[2].round() as i64,
             r[3].round() as i64,
         );
-        img.fill_rect(x0, y0, x1, y1, [255, 255, 250], 0.82);
+        img.fill_rect(x0, y0, x1, y1, [255, 255, 250], 0.9);
         let border = [70, 70, 80];
         img.fill_rect(x0, y0, x1, y0 + 1, border, 0.7);
         img.fill_rect(x0, y1 - 1, x1, y1, border, 0.7);
@@ -185,6 +199,7 @@ mod tests {
                 anchor: [100.0 + f64::from(i), 100.0],
                 priority: 0.0,
                 size_px: 12.0,
+                target: None,
             })
             .collect();
         let placed = place(&labels, 300, 200, &[]).unwrap();

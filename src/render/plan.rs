@@ -143,11 +143,13 @@ pub fn plan_view(rs: &RenderScene, opts: &PlanOptions) -> Result<Image, RenderEr
                 ObjectKind::Ceiling => 2.0,
                 _ => 0.0,
             };
+            let (p0, p1) = (to_px([a[0], b[1]]), to_px([b[0], a[1]]));
             ls.push(Label {
                 text: o.id.clone(),
                 anchor: to_px([c[0], c[1]]),
                 priority: kind_rank * 100.0 + footprint.min(99.0),
                 size_px: 12.0,
+                target: Some([p0[0], p0[1], p1[0], p1[1]]),
             });
         }
         let placed = labels::place(&ls, img.width, img.height, &obstacles)?;

@@ -133,12 +133,8 @@ pub fn room_views(
             None => true,
         }
     };
-    // Points the view must show: the floor and every object of the room.
-    let mut fit_pts: Vec<[f64; 3]> = room
-        .floor_polygon
-        .iter()
-        .map(|p| [p[0], p[1], 0.0])
-        .collect();
+    // Points every view must show: every object of the room.
+    let mut object_pts: Vec<[f64; 3]> = Vec::new();
     for o in rs
         .objects
         .iter()
@@ -146,7 +142,7 @@ pub fn room_views(
     {
         let [a, b] = o.bounds;
         for i in 0..8 {
-            fit_pts.push([
+            object_pts.push([
                 if i & 1 == 0 { a[0] } else { b[0] },
                 if i & 2 == 0 { a[1] } else { b[1] },
                 if i & 4 == 0 { a[2] } else { b[2] },
@@ -156,6 +152,23 @@ pub fn room_views(
     let aspect = f64::from(opts.width) / f64::from(opts.height);
     let mut out = Vec::new();
     for (k, (corner, inward)) in convex_corners(&room.floor_polygon).into_iter().enumerate() {
+        // Plus the floor corners away from the camera; the two beside it may fall out of the
+        // frame (showing them would push the camera far back and shrink the room).
+        let n = room.floor_polygon.len();
+        let ci = room
+            .floor_polygon
+            .iter()
+            .position(|p| *p == corner)
+            .unwrap_or(0);
+        let mut fit_pts = object_pts.clone();
+        for (j, p) in room.floor_polygon.iter().enumerate() {
+            if j != ci && j != (ci + 1) % n && j != (ci + n - 1) % n {
+                fit_pts.push([p[0], p[1], 0.0]);
+            }
+        }
+        if fit_pts.is_empty() {
+            fit_pts.push([center[0], center[1], 0.0]);
+        }
         let camera = corner_camera(corner, inward, center, &fit_pts, opts, aspect)?;
         let eye = [camera.eye.x, camera.eye.y];
         let items: Vec<DrawItem<'_>> = rs
@@ -193,6 +206,7 @@ pub fn room_views(
                     anchor: cov.centroid,
                     priority: cov.pixels,
                     size_px: 13.0,
+                    target: Some(cov.bbox),
                 });
             }
             let placed = labels::place(&ls, img.width, img.height, &[cap_box])?;
