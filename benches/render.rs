@@ -8,6 +8,7 @@ use scenesmith::pipeline::build_scene;
 use scenesmith::render::plan::{PlanOptions, plan_view};
 use scenesmith::render::scene::{RenderMesh, RenderScene};
 use scenesmith::render::views::{RoomViewOptions, room_views};
+use scenesmith::stages::run::Backend;
 
 /// Splits every triangle into four (midpoints), until the scene has at least `target`.
 fn refine(rs: &mut RenderScene, target: usize) {
@@ -84,7 +85,7 @@ fn main() {
     println!("| scene | objects | triangles | view | size | render s (best of {runs}) | png s |");
     println!("|---|---|---|---|---|---|---|");
     for (name, prompt) in prompts {
-        let (state, _) = match build_scene(prompt, 0, name) {
+        let (state, _) = match build_scene(prompt, 0, name, &Backend::Builtin) {
             Ok(s) => s,
             Err(e) => {
                 eprintln!("{name}: {e}");
