@@ -40,6 +40,10 @@ pub struct Camera {
     pub projection: Projection,
     /// Nearest depth drawn, metres (geometry closer is clipped).
     pub near: f64,
+    /// Offset of the image centre from the optical axis along (right, up), in image-plane
+    /// units (`x / z` for perspective, metres for orthographic). A level camera with a
+    /// vertical shift keeps verticals vertical (two-point perspective) while framing the floor.
+    pub lens_shift: [f64; 2],
 }
 
 impl Camera {
@@ -66,6 +70,7 @@ impl Camera {
                 tan_half_fov_y: (fov_y_deg.to_radians() / 2.0).tan(),
             },
             near: 0.02,
+            lens_shift: [0.0, 0.0],
         })
     }
 
@@ -89,6 +94,7 @@ impl Camera {
                 half_height: h / 2.0,
             },
             near: 0.0,
+            lens_shift: [0.0, 0.0],
         })
     }
 
@@ -111,11 +117,21 @@ impl Camera {
         }
     }
 
+    /// Pixel position of the optical axis in a `width x height` image (the image centre
+    /// moved by the lens shift).
+    pub fn principal_point(&self, width: u32, height: u32) -> (f64, f64) {
+        let s = self.pixel_scale(width, height);
+        (
+            f64::from(width) / 2.0 - self.lens_shift[0] * s,
+            f64::from(height) / 2.0 + self.lens_shift[1] * s,
+        )
+    }
+
     /// Projects a point in camera coordinates to `(pixel x, pixel y, depth)`; `None` when it
     /// lies closer than the near plane.
     pub fn project_camera(&self, c: Vector3<f64>, width: u32, height: u32) -> Option<[f64; 3]> {
         let s = self.pixel_scale(width, height);
-        let (cx, cy) = (f64::from(width) / 2.0, f64::from(height) / 2.0);
+        let (cx, cy) = self.principal_point(width, height);
         match self.projection {
             Projection::Perspective { .. } => {
                 if c.z < self.near {

@@ -148,7 +148,7 @@ pub fn draw(img: &mut Image, labels: &[Label], placed: &[Placed]) -> Result<(), 
                     None,
                 );
             }
-            if let Some(dot) = tiny_skia::PathBuilder::from_circle(ax, ay, 2.5) {
+            if let Some(dot) = tiny_skia::PathBuilder::from_circle(ax, ay, 2.0) {
                 pm.fill_path(
                     &dot,
                     &paint,

@@ -121,37 +121,39 @@ pub fn plan_view(rs: &RenderScene, opts: &PlanOptions) -> Result<Image, RenderEr
     }
     let mut img = canvas.finish();
 
+    let mut ls = Vec::new();
+    for o in &rs.objects {
+        if o.kind == ObjectKind::Architecture {
+            continue;
+        }
+        let c = o.center();
+        let [a, b] = o.bounds;
+        let footprint = (b[0] - a[0]) * (b[1] - a[1]);
+        let kind_rank = match o.kind {
+            ObjectKind::Furniture => 4.0,
+            ObjectKind::Wall => 3.0,
+            ObjectKind::ThinCovering => 1.0,
+            ObjectKind::Ceiling => 2.0,
+            _ => 0.0,
+        };
+        let (p0, p1) = (to_px([a[0], b[1]]), to_px([b[0], a[1]]));
+        ls.push(Label {
+            text: o.id.clone(),
+            anchor: to_px([c[0], c[1]]),
+            priority: kind_rank * 100.0 + footprint.min(99.0),
+            size_px: 12.0,
+            target: Some([p0[0], p0[1], p1[0], p1[1]]),
+        });
+    }
     let mut obstacles = Vec::new();
     obstacles.push(draw_scale_bar(&mut img, ppm)?);
     obstacles.push(draw_axes(&mut img)?);
+    let footprints: Vec<[f64; 4]> = ls.iter().filter_map(|l| l.target).collect();
     for r in &rs.rooms {
-        obstacles.push(draw_room_label(&mut img, r, &to_px)?);
+        let taken: Vec<[f64; 4]> = footprints.iter().chain(&obstacles).copied().collect();
+        obstacles.push(draw_room_label(&mut img, r, &to_px, &taken)?);
     }
     if opts.object_labels {
-        let mut ls = Vec::new();
-        for o in &rs.objects {
-            if o.kind == ObjectKind::Architecture {
-                continue;
-            }
-            let c = o.center();
-            let [a, b] = o.bounds;
-            let footprint = (b[0] - a[0]) * (b[1] - a[1]);
-            let kind_rank = match o.kind {
-                ObjectKind::Furniture => 4.0,
-                ObjectKind::Wall => 3.0,
-                ObjectKind::ThinCovering => 1.0,
-                ObjectKind::Ceiling => 2.0,
-                _ => 0.0,
-            };
-            let (p0, p1) = (to_px([a[0], b[1]]), to_px([b[0], a[1]]));
-            ls.push(Label {
-                text: o.id.clone(),
-                anchor: to_px([c[0], c[1]]),
-                priority: kind_rank * 100.0 + footprint.min(99.0),
-                size_px: 12.0,
-                target: Some([p0[0], p0[1], p1[0], p1[1]]),
-            });
-        }
         let placed = labels::place(&ls, img.width, img.height, &obstacles)?;
         labels::draw(&mut img, &ls, &placed)?;
     }
@@ -242,11 +244,13 @@ fn draw_openings(
     }
 }
 
-/// Draws a boxed two-line room label in the top-left inside corner; returns its box.
+/// Draws a boxed two-line room label (type, id, size, area) in the inside corner where it
+/// covers least of `taken`; returns its box.
 fn draw_room_label(
     img: &mut Image,
     room: &crate::scene::Room,
     to_px: &dyn Fn([f64; 2]) -> [f64; 2],
+    taken: &[[f64; 4]],
 ) -> Result<[f64; 4], RenderError> {
     let (lo, hi) = polygon::bounds(&room.floor_polygon);
     let area = polygon::signed_area(&room.floor_polygon).abs();
@@ -260,10 +264,28 @@ fn draw_room_label(
     let (t_px, s_px) = (16.0, 12.0);
     let mt = measure(&title, t_px)?;
     let ms = measure(&sub, s_px)?;
-    let corner = to_px([lo[0], hi[1]]);
-    let (x0, y0) = (corner[0] + 6.0, corner[1] + 6.0);
     let w = f64::from(mt.width.max(ms.width)) + 10.0;
     let h = f64::from(mt.height() + ms.height()) + 8.0;
+    // The inside corner where the label covers least furniture (top-left on ties).
+    let (tl, br) = (to_px([lo[0], hi[1]]), to_px([hi[0], lo[1]]));
+    let candidates = [
+        [tl[0] + 6.0, tl[1] + 6.0],
+        [br[0] - 6.0 - w, tl[1] + 6.0],
+        [tl[0] + 6.0, br[1] - 6.0 - h],
+        [br[0] - 6.0 - w, br[1] - 6.0 - h],
+    ];
+    let overlap = |r: [f64; 4], t: &[f64; 4]| {
+        (r[2].min(t[2]) - r[0].max(t[0])).max(0.0) * (r[3].min(t[3]) - r[1].max(t[1])).max(0.0)
+    };
+    let mut best = (f64::INFINITY, candidates[0]);
+    for c in candidates {
+        let r = [c[0], c[1], c[0] + w, c[1] + h];
+        let cost: f64 = taken.iter().map(|t| overlap(r, t)).sum();
+        if cost < best.0 {
+            best = (cost, c);
+        }
+    }
+    let [x0, y0] = best.1;
     let rect = [x0, y0, x0 + w, y0 + h];
     img.fill_rect(
         x0 as i64,

@@ -289,7 +289,7 @@ fn clip_near(v: [ClipVert; 3], near: f64) -> ([ClipVert; 4], usize) {
 
 fn setup(geo: &Geometry<'_>, camera: &Camera, sw: u32, sh: u32) -> Vec<ScreenTri> {
     let scale = camera.pixel_scale(sw, sh);
-    let (cx, cy) = (f64::from(sw) / 2.0, f64::from(sh) / 2.0);
+    let (cx, cy) = camera.principal_point(sw, sh);
     let persp = camera.is_perspective();
     let near = camera.near;
     let mut out = Vec::with_capacity(geo.tris.len());

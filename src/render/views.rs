@@ -163,7 +163,10 @@ pub fn room_views(
         let mut fit_pts = object_pts.clone();
         for (j, p) in room.floor_polygon.iter().enumerate() {
             if j != ci && j != (ci + 1) % n && j != (ci + n - 1) % n {
+                // The far corners floor to ceiling: the view shows the room, not only its
+                // furniture.
                 fit_pts.push([p[0], p[1], 0.0]);
+                fit_pts.push([p[0], p[1], room.wall_height]);
             }
         }
         if fit_pts.is_empty() {
@@ -217,8 +220,9 @@ pub fn room_views(
     Ok(out)
 }
 
-/// A camera at eye height behind `corner` (along `-inward`), looking at the room centre,
-/// pulled back until `fit_pts` are in frame (at most 6 m).
+/// A level camera at eye height at `corner` or behind it (along `-inward`), facing the room
+/// centre, with a lens shift that frames `fit_pts`: verticals stay vertical. It stands as
+/// close to the corner as the field of view allows (at most 6 m back).
 fn corner_camera(
     corner: [f64; 2],
     inward: [f64; 2],
@@ -227,48 +231,82 @@ fn corner_camera(
     opts: &RoomViewOptions,
     aspect: f64,
 ) -> Result<Camera, RenderError> {
-    let target = [center[0], center[1], 0.5];
-    let make = |back: f64| {
+    let max_tan = (opts.fov_y_deg.to_radians() / 2.0).tan();
+    let margin = 0.05;
+    // The frame (lens shift, tan of half the vertical field) that shows every point from
+    // `back` metres behind the corner; `None` when a point is behind the camera.
+    let frame = |back: f64| -> Result<Option<(Camera, f64)>, RenderError> {
         let eye = [
             corner[0] - inward[0] * back,
             corner[1] - inward[1] * back,
             opts.eye_height_m,
         ];
-        Camera::look_at(eye, target, [0.0, 0.0, 1.0], opts.fov_y_deg)
+        let look = [center[0], center[1], opts.eye_height_m];
+        let look = if (look[0] - eye[0]).hypot(look[1] - eye[1]) > 1e-6 {
+            look
+        } else {
+            [eye[0] + inward[0], eye[1] + inward[1], eye[2]]
+        };
+        let mut cam = Camera::look_at(eye, look, [0.0, 0.0, 1.0], opts.fov_y_deg)?;
+        cam.near = 0.05;
+        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for p in fit_pts {
+            let c = cam.to_camera(*p);
+            if c.z < 0.1 {
+                return Ok(None);
+            }
+            let (x, y) = (c.x / c.z, c.y / c.z);
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+        }
+        let need = ((y1 - y0) / 2.0).max((x1 - x0) / 2.0 / aspect) / (1.0 - margin);
+        cam.lens_shift = [(x0 + x1) / 2.0, (y0 + y1) / 2.0];
+        Ok(Some((cam, need)))
     };
-    let fits = |cam: &Camera| {
-        let margin = 0.04;
-        let (w, h) = (1000.0, 1000.0 / aspect);
-        fit_pts
-            .iter()
-            .all(|p| match cam.project(*p, w as u32, h as u32) {
-                Some(q) => {
-                    q[0] >= w * margin
-                        && q[0] <= w * (1.0 - margin)
-                        && q[1] >= h * margin
-                        && q[1] <= h * (1.0 - margin)
-                }
-                None => false,
-            })
+    let fits = |back: f64| -> Result<Option<Camera>, RenderError> {
+        Ok(match frame(back)? {
+            Some((mut cam, need)) if need <= max_tan => {
+                // Zoom in when the points need less than the widest field of view, but not to
+                // a telephoto view of a single small object.
+                let tan = need.max(max_tan * 0.6);
+                cam.projection = super::camera::Projection::Perspective {
+                    tan_half_fov_y: tan,
+                };
+                Some(cam)
+            }
+            _ => None,
+        })
     };
+    if let Some(cam) = fits(0.0)? {
+        return Ok(cam);
+    }
     let (mut lo, mut hi) = (0.0f64, 6.0f64);
-    if fits(&make(lo)?) {
-        return make(lo);
-    }
-    if !fits(&make(hi)?) {
-        return make(hi);
-    }
+    let Some(mut best) = fits(hi)? else {
+        // Even 6 m back does not show everything: use the widest view from there.
+        return frame(hi)?
+            .map(|(mut cam, _)| {
+                cam.projection = super::camera::Projection::Perspective {
+                    tan_half_fov_y: max_tan,
+                };
+                cam
+            })
+            .ok_or_else(|| {
+                RenderError::InvalidCamera("no view of the room from its corner".into())
+            });
+    };
     for _ in 0..30 {
         let mid = (lo + hi) / 2.0;
-        if fits(&make(mid)?) {
-            hi = mid;
-        } else {
-            lo = mid;
+        match fits(mid)? {
+            Some(cam) => {
+                hi = mid;
+                best = cam;
+            }
+            None => lo = mid,
         }
     }
-    let mut cam = make(hi)?;
-    cam.near = 0.05;
-    Ok(cam)
+    Ok(best)
 }
 
 /// Draws a caption box in the top-left corner; returns its box.
