@@ -78,11 +78,20 @@ fn generate_writes_renders_and_render_rewrites_them_from_the_directory() {
         assert_eq!(png_size(&again.join(n)), png_size(&renders.join(n)), "{n}");
     }
 
-    // Default output: DIR/renders, replacing what is there.
+    // Default output: DIR/renders. Three threads give the bytes one thread gave.
     std::fs::remove_dir_all(&renders).unwrap();
-    let r = scenesmith(&["render", out.to_str().unwrap()], &[]);
+    let r = scenesmith(
+        &["render", out.to_str().unwrap()],
+        &[("RAYON_NUM_THREADS", "3")],
+    );
     assert!(r.status.success(), "{}", text(&r));
     assert_eq!(pngs(&renders), names);
+    for n in &names {
+        assert!(
+            std::fs::read(renders.join(n)).unwrap() == std::fs::read(again.join(n)).unwrap(),
+            "{n} depends on the thread count"
+        );
+    }
 }
 
 #[test]

@@ -279,3 +279,86 @@ fn contact_sheet_lays_out_images_with_captions() {
     assert!(count(&sheet, |p| p[0] < 80 && p[1] < 80 && p[2] < 80) > 50);
     assert!(contact_sheet(&[], 3).is_err());
 }
+
+/// Two rooms side by side: room_0 as in [`test_state`], room_1 east of it (walls back to
+/// back), with a green box.
+fn two_room_state() -> SceneState {
+    let mut state = test_state();
+    let walls = rectangle_walls("room_1", [4.24, 0.0], 3.0, 3.0, 0.12);
+    let room = Room {
+        id: "room_1".into(),
+        room_type: "hall".into(),
+        prompt: String::new(),
+        floor_polygon: vec![[4.24, 0.0], [7.24, 0.0], [7.24, 3.0], [4.24, 3.0]],
+        wall_height: 2.6,
+        walls,
+        floor_material: "oak".into(),
+        wall_material: "plaster".into(),
+    };
+    let arch = build_room_asset(&room, "room_1_architecture").unwrap();
+    state.scene.rooms.push(room);
+    let arch_id = state.insert_asset(arch);
+    state.scene.objects.push(SceneObject {
+        id: "room_1_architecture".into(),
+        category: "room_architecture".into(),
+        kind: ObjectKind::Architecture,
+        room: "room_1".into(),
+        asset: arch_id,
+        world_from_object: Pose::IDENTITY,
+        support: Support::World,
+        welded: true,
+        joint_positions: Default::default(),
+    });
+    let mut green = red_box_asset();
+    green.id = "green_box_test".into();
+    for v in &mut green.links[0].visuals {
+        v.color = [0.03, 0.7, 0.05, 1.0];
+    }
+    let id = state.insert_asset(green);
+    state.add_object(
+        "box",
+        ObjectKind::Furniture,
+        "room_1",
+        &id,
+        Pose::from_xyz(5.7, 1.5, 0.0),
+        Support::Floor {
+            room: "room_1".into(),
+        },
+    );
+    state
+}
+
+fn is_green(p: [u8; 4]) -> bool {
+    p[1] > 120 && p[0] < 90 && p[2] < 90
+}
+
+#[test]
+fn each_room_view_shows_its_own_room_and_the_plan_shows_both() {
+    let state = two_room_state();
+    let rs = RenderScene::from_state(&state).unwrap();
+    let opts = RoomViewOptions {
+        width: 320,
+        height: 240,
+        labels: false,
+        ..Default::default()
+    };
+    for (room, own, other) in [
+        (
+            0,
+            is_red as fn([u8; 4]) -> bool,
+            is_green as fn([u8; 4]) -> bool,
+        ),
+        (1, is_green, is_red),
+    ] {
+        let views = room_views(&rs, room, &opts).unwrap();
+        assert_eq!(views.len(), 4);
+        for (name, img) in &views {
+            assert!(name.starts_with(&format!("room_{room}_view_")), "{name}");
+            assert!(count(img, own) > 300, "{name}: its own box is not visible");
+            assert_eq!(count(img, other), 0, "{name}: shows the other room's box");
+        }
+    }
+    let plan = plan_view(&rs, &PlanOptions::default()).unwrap();
+    assert!(count(&plan, is_red) > 1000 && count(&plan, is_green) > 1000);
+    assert!(plan.width > plan.height, "{}x{}", plan.width, plan.height);
+}

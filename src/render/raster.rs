@@ -634,7 +634,7 @@ impl Shader<'_> {
         let (w, h) = (i64::from(self.vis.width), i64::from(self.vis.height));
         if x > 0 && y > 0 && x + 1 < w && y + 1 < h {
             let i = (y * w + x) as usize;
-            let t = &self.vis.tri;
+            let t = &self.vis.tri[..];
             let wu = w as usize;
             if t[i - 1] == st && t[i + 1] == st && t[i - wu] == st && t[i + wu] == st {
                 return false;
@@ -789,6 +789,8 @@ fn resolve(
     let mut rgba = vec![255u8; w * h * 4];
     let si = s as i64;
     let vw = i64::from(vis.width);
+    let (vtri, vl1, vl2) = (&vis.tri[..], &vis.l1[..], &vis.l2[..]);
+    let st_object = &shader.st_object[..];
     let srgb = super::image::SrgbEncoder::get();
     let stats = rgba
         .par_chunks_mut(w * 4)
@@ -803,21 +805,21 @@ fn resolve(
                 let mut px = 0usize;
                 while px < w {
                     let (x0, y0) = (px as i64 * si, py as i64 * si);
-                    let first = vis.tri[(y0 * vw + x0) as usize];
+                    let first = vtri[(y0 * vw + x0) as usize];
                     let mut uniform = true;
                     let (mut a_sum, mut c_sum) = (0.0f32, 0.0f32);
                     let mut j = 0usize;
                     while j < n {
                         let (x, y) = (x0 + j as i64 % si, y0 + j as i64 / si);
                         let i = (y * vw + x) as usize;
-                        let st = vis.tri[i];
+                        let st = vtri[i];
                         ids[j] = st;
                         edge[j] = opts.edges && shader.is_edge(x, y, st);
                         uniform &= st == first && !edge[j];
-                        a_sum += vis.l1[i];
-                        c_sum += vis.l2[i];
+                        a_sum += vl1[i];
+                        c_sum += vl2[i];
                         if st != NONE {
-                            let o = shader.st_object[st as usize] as usize;
+                            let o = st_object[st as usize] as usize;
                             if o < acc.len() {
                                 acc[o].add(x as u64, y as u64);
                             }
@@ -841,7 +843,7 @@ fn resolve(
                             let mut col = if ids[j] == NONE {
                                 opts.background
                             } else {
-                                shader.shade(ids[j], vis.l1[i], vis.l2[i])
+                                shader.shade(ids[j], vl1[i], vl2[i])
                             };
                             if edge[j] {
                                 let a = opts.edge_strength;
@@ -938,14 +940,25 @@ impl Default for Acc {
 }
 
 impl Acc {
+    #[inline(always)]
     fn add(&mut self, x: u64, y: u64) {
         self.n += 1;
         self.sx += x;
         self.sy += y;
-        self.x0 = self.x0.min(x);
-        self.y0 = self.y0.min(y);
-        self.x1 = self.x1.max(x);
-        self.y1 = self.y1.max(y);
+        // Plain comparisons: `min`/`max` are calls in unoptimised builds, and this runs per
+        // sample.
+        if x < self.x0 {
+            self.x0 = x;
+        }
+        if y < self.y0 {
+            self.y0 = y;
+        }
+        if x > self.x1 {
+            self.x1 = x;
+        }
+        if y > self.y1 {
+            self.y1 = y;
+        }
     }
 
     fn merge(&mut self, o: &Acc) {
