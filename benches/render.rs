@@ -10,12 +10,14 @@ use scenesmith::render::scene::{RenderMesh, RenderScene};
 use scenesmith::render::views::{RoomViewOptions, room_views};
 use scenesmith::stages::run::Backend;
 
-/// Splits every triangle into four (midpoints), until the scene has at least `target`.
+/// Splits triangles into four (midpoints), one mesh at a time round-robin, until the scene
+/// has at least `target` triangles (same shapes, denser meshes).
 fn refine(rs: &mut RenderScene, target: usize) {
-    while rs.triangle_count() < target {
-        for m in &mut rs.meshes {
-            *m = split4(m);
-        }
+    let mut i = 0;
+    while rs.triangle_count() < target && !rs.meshes.is_empty() {
+        let k = i % rs.meshes.len();
+        rs.meshes[k] = split4(&rs.meshes[k]);
+        i += 1;
     }
 }
 
@@ -53,16 +55,29 @@ fn split4(m: &RenderMesh) -> RenderMesh {
     out
 }
 
-fn best_of<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
+/// CPU time of this process (all threads), seconds, from /proc (10 ms ticks).
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    // Fields after the command name (which is in parentheses): utime is the 12th, stime 13th.
+    let rest = stat.rsplit(')').next().unwrap_or("");
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks = |i: usize| f.get(i).and_then(|v| v.parse::<f64>().ok()).unwrap_or(0.0);
+    (ticks(11) + ticks(12)) / 100.0
+}
+
+/// Best wall time over `runs`, mean CPU time per run, and the last result.
+fn best_of<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, f64, T) {
     let mut best = f64::INFINITY;
     let mut last = None;
+    let c0 = cpu_seconds();
     for _ in 0..runs {
         let t0 = Instant::now();
         let v = f();
         best = best.min(t0.elapsed().as_secs_f64());
         last = Some(v);
     }
-    (best, last.expect("runs >= 1"))
+    let cpu = (cpu_seconds() - c0) / runs as f64;
+    (best, cpu, last.expect("runs >= 1"))
 }
 
 fn main() {
@@ -79,11 +94,23 @@ fn main() {
             "dining",
             "A dining room with a table set for 4 people. Each setting has a plate, a glass, a fork, and a knife.",
         ),
+        (
+            "library",
+            "A library with four shelves full of books, a reading table with chairs and mugs",
+        ),
     ];
     let runs = 5;
-    println!("threads: {}", rayon::current_num_threads());
-    println!("| scene | objects | triangles | view | size | render s (best of {runs}) | png s |");
-    println!("|---|---|---|---|---|---|---|");
+    println!(
+        "threads: {}, load average: {}",
+        rayon::current_num_threads(),
+        std::fs::read_to_string("/proc/loadavg")
+            .unwrap_or_default()
+            .trim()
+    );
+    println!(
+        "| scene | objects | triangles | view | size | render wall s (best of {runs}) | render CPU s (mean) | png s |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
     for (name, prompt) in prompts {
         let (state, _) = match build_scene(prompt, 0, name, &Backend::Builtin) {
             Ok(s) => s,
@@ -111,29 +138,31 @@ fn main() {
             };
             let tris = rs.triangle_count();
             let opts = RoomViewOptions::default();
-            let one_view = RoomViewOptions { ..opts };
-            let (t, views) = best_of(runs, || room_views(&rs, 0, &one_view).map(|v| v.len()));
-            let n = views.unwrap_or(0).max(1);
-            let (tp, _) = best_of(1, || {
-                room_views(&rs, 0, &one_view).map(|v| {
-                    v.iter()
-                        .map(|(_, i)| i.encode_png().map(|b| b.len()).unwrap_or(0))
-                        .sum::<usize>()
-                })
+            let (t, cpu, views) = best_of(runs, || room_views(&rs, 0, &opts));
+            let views = views.unwrap_or_default();
+            let n = views.len().max(1) as f64;
+            let (tp, _, _) = best_of(runs, || {
+                views
+                    .iter()
+                    .map(|(_, i)| i.encode_png().map(|b| b.len()).unwrap_or(0))
+                    .sum::<usize>()
             });
             println!(
-                "| {label} | {objects} | {tris} | room view (mean of {n}) | {}x{} | {:.3} | {:.3} |",
+                "| {label} | {objects} | {tris} | room view (mean of {n}) | {}x{} | {:.3} | {:.3} | {:.3} |",
                 opts.width,
                 opts.height,
-                t / n as f64,
-                (tp - t).max(0.0) / n as f64
+                t / n,
+                cpu / n,
+                tp / n
             );
-            let (tplan, img) = best_of(runs, || plan_view(&rs, &PlanOptions::default()));
+            let (tplan, cpu, img) = best_of(runs, || plan_view(&rs, &PlanOptions::default()));
             let (w, h) = img.as_ref().map(|i| (i.width, i.height)).unwrap_or((0, 0));
-            let (tpng, _) = best_of(runs, || {
+            let (tpng, _, _) = best_of(runs, || {
                 img.as_ref().map(|i| i.encode_png().map(|b| b.len()))
             });
-            println!("| {label} | {objects} | {tris} | plan | {w}x{h} | {tplan:.3} | {tpng:.3} |");
+            println!(
+                "| {label} | {objects} | {tris} | plan | {w}x{h} | {tplan:.3} | {cpu:.3} | {tpng:.3} |"
+            );
         }
     }
 }
