@@ -362,3 +362,20 @@ fn each_room_view_shows_its_own_room_and_the_plan_shows_both() {
     assert!(count(&plan, is_red) > 1000 && count(&plan, is_green) > 1000);
     assert!(plan.width > plan.height, "{}x{}", plan.width, plan.height);
 }
+
+#[test]
+fn room_views_by_id_and_top_view_from_a_state() {
+    let state = test_state();
+    let opts = RoomViewOptions {
+        width: 160,
+        height: 120,
+        labels: false,
+        ..Default::default()
+    };
+    let views = scenesmith::render::room_views_of(&state, "room_0", &opts).unwrap();
+    assert_eq!(views.len(), 4);
+    let err = scenesmith::render::room_views_of(&state, "attic_9", &opts).unwrap_err();
+    assert!(err.to_string().contains("attic_9"), "{err}");
+    let top = scenesmith::render::top_view(&state).unwrap();
+    assert!(count(&top, is_red) > 1000);
+}

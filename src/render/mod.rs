@@ -72,3 +72,19 @@ pub fn top_view(state: &SceneState) -> Result<Image, RenderError> {
     let rs = RenderScene::from_state(state)?;
     plan::plan_view(&rs, &plan::PlanOptions::default())
 }
+
+/// Renders the corner views of the room `room_id` of a scene state; `(name, image)` pairs
+/// named `<room>_view_<k>`.
+pub fn room_views_of(
+    state: &SceneState,
+    room_id: &str,
+    opts: &views::RoomViewOptions,
+) -> Result<Vec<(String, Image)>, RenderError> {
+    let rs = RenderScene::from_state(state)?;
+    let index = rs
+        .rooms
+        .iter()
+        .position(|r| r.id == room_id)
+        .ok_or_else(|| RenderError::Empty(format!("the scene has no room {room_id:?}")))?;
+    views::room_views(&rs, index, opts)
+}

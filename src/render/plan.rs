@@ -43,6 +43,16 @@ impl Default for PlanOptions {
 /// Plan wall colour (linear).
 const WALL: [f32; 3] = [0.035, 0.037, 0.045];
 
+/// Plan floor colour: 25 % of the material over a light neutral.
+fn pale(c: [f32; 3]) -> [f32; 3] {
+    let base = [0.80, 0.80, 0.78];
+    [
+        0.25 * c[0] + 0.75 * base[0],
+        0.25 * c[1] + 0.75 * base[1],
+        0.25 * c[2] + 0.75 * base[2],
+    ]
+}
+
 /// XY bounds of the plan: rooms (walls included) or, without rooms, all geometry.
 fn plan_bounds(rs: &RenderScene) -> Option<([f64; 2], [f64; 2])> {
     let mut pts: Vec<[f64; 2]> = Vec::new();
@@ -93,6 +103,13 @@ pub fn plan_view(rs: &RenderScene, opts: &PlanOptions) -> Result<Image, RenderEr
             Role::Wall { .. } => DrawItem {
                 mesh: m,
                 color: Some(WALL),
+                unlit: true,
+            },
+            // A pale, flat version of the floor material, so furniture of the same material
+            // (a wooden table on a wooden floor) still stands out.
+            Role::Floor => DrawItem {
+                mesh: m,
+                color: Some(pale(m.color)),
                 unlit: true,
             },
             _ => DrawItem::new(m),

@@ -626,6 +626,7 @@ impl Shader<'_> {
 
     /// True when the sample at `(x, y)` lies on a line: a silhouette, a boundary between
     /// objects, a crease or a depth step.
+    #[inline(always)]
     fn is_edge(&self, x: i64, y: i64, st: u32) -> bool {
         if st == NONE {
             return false;
