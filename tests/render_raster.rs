@@ -181,9 +181,8 @@ fn a_textured_quad_shows_its_texture_repeated() {
     let mut opts = RasterOptions::new(160, 160);
     opts.edges = false;
     let item = DrawItem {
-        mesh: &quad,
-        color: None,
         unlit: true,
+        ..DrawItem::new(&quad)
     };
     let out = render(&[item], &cam, &opts, 1).unwrap();
     // Each texture copy covers 80 x 80 px; its blocks are 40 x 40 px. Sample block centres.
@@ -292,4 +291,45 @@ fn bad_sizes_and_cameras_are_errors() {
     assert!(Camera::look_at([0.0; 3], [0.0; 3], [0.0, 0.0, 1.0], 60.0).is_err());
     assert!(Camera::look_at([0.0; 3], [0.0, 0.0, -1.0], [0.0, 0.0, 1.0], 60.0).is_err());
     assert!(Camera::look_at([0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], 0.0).is_err());
+}
+
+#[test]
+fn the_floor_is_darker_under_furniture() {
+    use scenesmith::render::raster::render_with_shadow;
+    use scenesmith::render::shadow::FloorShadow;
+    let floor = box_at([0.0, 0.0, -0.05], [4.0, 4.0, 0.1], [0.6, 0.6, 0.6], 0);
+    let table_top = box_at([0.5, 0.5, 0.72], [1.0, 0.8, 0.04], [0.5, 0.3, 0.2], 1);
+    let shadow = FloorShadow::build(
+        &[DrawItem::new(&table_top)],
+        [-2.0, -2.0],
+        [2.0, 2.0],
+        0.0,
+        0.02,
+        0.1,
+        0.5,
+    )
+    .unwrap();
+    let cam = Camera::top_down([-2.0, -2.0], [2.0, 2.0], 5.0).unwrap();
+    let mut opts = RasterOptions::new(200, 200);
+    opts.edges = false;
+    // Only the floor is drawn, so the shadow under the (undrawn) table top is in view.
+    let item = DrawItem {
+        receives_shadow: true,
+        ..DrawItem::new(&floor)
+    };
+    let out = render_with_shadow(&[item], &cam, &opts, 2, Some(&shadow)).unwrap();
+    // 50 px per metre: the table top covers x 0..1, y 0.1..0.9 -> columns 100..150, rows 55..95.
+    let under = px(&out.image, 125, 75)[0];
+    let open = px(&out.image, 40, 160)[0];
+    let plain = render(&[DrawItem::new(&floor)], &cam, &opts, 2).unwrap();
+    assert_eq!(
+        px(&plain.image, 40, 160)[0],
+        open,
+        "the open floor is unchanged"
+    );
+    assert!(
+        f32::from(under) < f32::from(open) * 0.85,
+        "under {under}, open {open}"
+    );
+    assert_eq!(px(&plain.image, 125, 75)[0], open);
 }

@@ -17,7 +17,9 @@ pub mod image;
 pub mod labels;
 pub mod plan;
 pub mod raster;
+mod resolve;
 pub mod scene;
+pub mod shadow;
 pub mod text;
 pub mod views;
 

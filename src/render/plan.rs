@@ -9,6 +9,7 @@ use super::image::Image;
 use super::labels::{self, Label};
 use super::raster::{self, DrawItem, RasterOptions};
 use super::scene::{RenderScene, Role};
+use super::shadow::FloorShadow;
 use super::text::{draw_text, measure};
 use crate::geometry::polygon;
 use crate::scene::{ObjectKind, OpeningKind};
@@ -104,6 +105,7 @@ pub fn plan_view(rs: &RenderScene, opts: &PlanOptions) -> Result<Image, RenderEr
                 mesh: m,
                 color: Some(WALL),
                 unlit: true,
+                receives_shadow: false,
             },
             // A pale, flat version of the floor material, so furniture of the same material
             // (a wooden table on a wooden floor) still stands out.
@@ -111,6 +113,7 @@ pub fn plan_view(rs: &RenderScene, opts: &PlanOptions) -> Result<Image, RenderEr
                 mesh: m,
                 color: Some(pale(m.color)),
                 unlit: true,
+                receives_shadow: true,
             },
             _ => DrawItem::new(m),
         })
@@ -121,7 +124,13 @@ pub fn plan_view(rs: &RenderScene, opts: &PlanOptions) -> Result<Image, RenderEr
     ropts.edge_strength = 0.6;
     // From above, the key light mostly from the zenith keeps tops evenly lit.
     ropts.lighting.key_dir = [0.3, -0.4, 1.0];
-    let out = raster::render(&items, &camera, &ropts, rs.objects.len())?;
+    let casters: Vec<DrawItem<'_>> = items
+        .iter()
+        .filter(|i| i.mesh.role == Role::Object)
+        .copied()
+        .collect();
+    let shadow = FloorShadow::build(&casters, lo, hi, 0.0, 0.02, 0.1, 0.55)?;
+    let out = raster::render_with_shadow(&items, &camera, &ropts, rs.objects.len(), Some(&shadow))?;
 
     let to_px = |p: [f64; 2]| -> [f64; 2] {
         camera

@@ -14,6 +14,7 @@ use super::labels::{self, Label};
 use super::plan::{PlanOptions, plan_view};
 use super::raster::{self, DrawItem, RasterOptions};
 use super::scene::{RenderMesh, RenderScene, Role};
+use super::shadow::FloorShadow;
 use super::text::{draw_text, measure};
 use crate::assets::Asset;
 use crate::scene::{ObjectKind, Room};
@@ -150,6 +151,23 @@ pub fn room_views(
         }
     }
     let aspect = f64::from(opts.width) / f64::from(opts.height);
+    // Soft contact shadows of the room's objects on the floor, shared by its views.
+    let casters: Vec<DrawItem<'_>> = rs
+        .meshes
+        .iter()
+        .filter(|m| m.role == Role::Object && in_room(m))
+        .map(DrawItem::new)
+        .collect();
+    let (flo, fhi) = crate::geometry::polygon::bounds(&room.floor_polygon);
+    let shadow = FloorShadow::build(
+        &casters,
+        [flo[0] - 0.5, flo[1] - 0.5],
+        [fhi[0] + 0.5, fhi[1] + 0.5],
+        0.0,
+        0.02,
+        0.15,
+        0.45,
+    )?;
     let mut out = Vec::new();
     for (k, (corner, inward)) in convex_corners(&room.floor_polygon).into_iter().enumerate() {
         // Plus the floor corners away from the camera; the two beside it may fall out of the
@@ -183,12 +201,16 @@ pub fn room_views(
                 Role::Wall { room: r, wall } => !wall_is_between(&rs.rooms, r, wall, eye, center),
                 _ => true,
             })
-            .map(DrawItem::new)
+            .map(|m| DrawItem {
+                receives_shadow: m.role == Role::Floor,
+                ..DrawItem::new(m)
+            })
             .collect();
         let mut ropts = RasterOptions::new(opts.width, opts.height);
         ropts.supersample = opts.supersample;
         ropts.background = [0.80, 0.81, 0.83];
-        let r = raster::render(&items, &camera, &ropts, rs.objects.len())?;
+        let r =
+            raster::render_with_shadow(&items, &camera, &ropts, rs.objects.len(), Some(&shadow))?;
         let mut img = r.image;
         let caption = format!(
             "{} ({}), view {k} from corner ({:.1}, {:.1})",
