@@ -267,10 +267,8 @@ fn run_check(
 
 fn run_render(cli_json: bool, dir: PathBuf, out: Option<PathBuf>) -> anyhow::Result<ExitCode> {
     let t0 = std::time::Instant::now();
-    let state = scenesmith::formats::scene_dir::load_state(&dir)
-        .with_context(|| format!("loading the scene in {}", dir.display()))?;
     let out = out.unwrap_or_else(|| dir.join("renders"));
-    let files = scenesmith::render::write_views(&out, &state)
+    let files = scenesmith::render::render_scene_dir(&dir, Some(&out))
         .with_context(|| format!("rendering {} into {}", dir.display(), out.display()))?;
     if cli_json {
         print_json(&json!({ "files": files, "seconds": t0.elapsed().as_secs_f64() }))?;

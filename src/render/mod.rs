@@ -4,12 +4,13 @@
 //!
 //! Data flow: [`scene::RenderScene`] poses every visual of a [`SceneState`] in the world;
 //! a [`camera::Camera`] and [`raster::render`] turn a draw list into an [`Image`] plus
-//! per-object coverage; [`plan`] and [`views`] choose cameras, cut walls away and draw
-//! labels ([`labels`], [`text`]) on top. Output is deterministic: the same input gives the
-//! same bytes.
+//! per-object coverage (optionally with a [`shadow::FloorShadow`]); [`plan`] and [`views`]
+//! choose cameras, cut walls away and draw labels ([`labels`], [`text`]) on top. Output is
+//! deterministic: the same input gives the same bytes, whatever the thread count.
 //!
-//! It does not do shadows, reflections, transparency or texture mipmaps, and it never reads
-//! files other than through [`formats::scene_dir::load_state`](crate::formats::scene_dir::load_state).
+//! It does not do cast shadows from lights, reflections, transparency (alpha is ignored) or
+//! texture mipmaps, and it reads files only through
+//! [`formats::scene_dir::load_state`](crate::formats::scene_dir::load_state).
 
 pub mod camera;
 pub mod draw;
@@ -67,6 +68,19 @@ pub enum RenderError {
     /// There is nothing to draw.
     #[error("nothing to render: {0}")]
     Empty(String),
+}
+
+/// Loads the scene directory `dir` ([`load_state`](crate::formats::scene_dir::load_state))
+/// and writes its standard views into `out` (default `dir/renders`); returns the paths.
+pub fn render_scene_dir(
+    dir: &std::path::Path,
+    out: Option<&std::path::Path>,
+) -> Result<Vec<std::path::PathBuf>, RenderError> {
+    let state = crate::formats::scene_dir::load_state(dir)?;
+    match out {
+        Some(out) => write_views(out, &state),
+        None => write_standard_views(dir, &state),
+    }
 }
 
 /// Renders the plan of a scene state (`top.png`'s content) at the default size.
