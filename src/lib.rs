@@ -25,6 +25,7 @@ pub mod layout;
 pub mod physics;
 pub mod pipeline;
 pub mod prompt;
+pub mod render;
 pub mod scene;
 pub mod stages;
 pub mod util;

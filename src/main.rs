@@ -42,6 +42,9 @@ enum Command {
         /// Skip loading the result in Drake before writing it.
         #[arg(long)]
         no_check: bool,
+        /// Skip writing the annotated views (`renders/`).
+        #[arg(long)]
+        no_render: bool,
         /// Continue a failed run of the same command after its last finished stage.
         #[arg(long)]
         resume: bool,
@@ -61,6 +64,14 @@ enum Command {
     },
     /// Report versions of the tool, Python, pydrake, solvers, MuJoCo and usd-core.
     Doctor,
+    /// Render a scene directory: the annotated plan (top.png) and per-room corner views.
+    Render {
+        /// Scene directory.
+        dir: PathBuf,
+        /// Where to write the PNGs (default DIR/renders).
+        #[arg(long, short)]
+        out: Option<PathBuf>,
+    },
 }
 
 /// Language-model backend options (the built-in offline backend is used without them).
@@ -254,6 +265,26 @@ fn run_check(
     })
 }
 
+fn run_render(cli_json: bool, dir: PathBuf, out: Option<PathBuf>) -> anyhow::Result<ExitCode> {
+    let t0 = std::time::Instant::now();
+    let out = out.unwrap_or_else(|| dir.join("renders"));
+    let files = scenesmith::render::render_scene_dir(&dir, Some(&out))
+        .with_context(|| format!("rendering {} into {}", dir.display(), out.display()))?;
+    if cli_json {
+        print_json(&json!({ "files": files, "seconds": t0.elapsed().as_secs_f64() }))?;
+    } else {
+        for f in &files {
+            eprintln!("wrote {}", f.display());
+        }
+        eprintln!(
+            "  {} images in {:.2}s",
+            files.len(),
+            t0.elapsed().as_secs_f64()
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 fn run_doctor(cli_json: bool) -> anyhow::Result<ExitCode> {
     let config = scenesmith::physics::BridgeConfig::from_env();
     let mut report = json!({
@@ -314,6 +345,7 @@ fn main() -> ExitCode {
             out,
             seed,
             no_check,
+            no_render,
             resume,
             llm,
         } => llm.choice().and_then(|backend| {
@@ -324,6 +356,7 @@ fn main() -> ExitCode {
                     seed,
                     out,
                     drake_check: !no_check,
+                    render: !no_render,
                     backend,
                     resume,
                 },
@@ -335,6 +368,7 @@ fn main() -> ExitCode {
             max_col,
         } => run_check(cli.json, dir, threshold, max_col),
         Command::Doctor => run_doctor(cli.json),
+        Command::Render { dir, out } => run_render(cli.json, dir, out),
     };
     match result {
         Ok(code) => code,

@@ -61,6 +61,9 @@ pub enum PipelineError {
     /// The Drake bridge failed.
     #[error(transparent)]
     Bridge(#[from] BridgeError),
+    /// Rendering the views failed.
+    #[error(transparent)]
+    Render(#[from] crate::render::RenderError),
     /// The written scene does not load or is not collision-free.
     #[error("scene check failed: {0}")]
     CheckFailed(String),
@@ -106,6 +109,8 @@ pub struct GenerateOptions {
     pub out: PathBuf,
     /// Run the Drake check before committing the output.
     pub drake_check: bool,
+    /// Write the annotated views into `<out>/renders/`.
+    pub render: bool,
     /// Which agents run the stages.
     pub backend: BackendChoice,
     /// Continue after the stages an earlier, failed run of the same request finished.
@@ -405,6 +410,14 @@ fn finish_run(
         )?;
         Ok(())
     })?;
+
+    // --- renders (src/render): top.png and per-room views into <out>/renders/ ---
+    if opts.render {
+        timed(timings, "render", || {
+            crate::render::write_standard_views(staging.path(), &state)
+        })?;
+    }
+    // --- end renders ---
 
     let check = if opts.drake_check {
         let summary = timed(timings, "drake_check", || -> Result<_, PipelineError> {
