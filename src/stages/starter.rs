@@ -255,11 +255,15 @@ pub fn furnish_room(
         }
     }
 
-    // Wall furniture: shelves, cabinets, then chairs that found no table.
+    // Wall furniture: every other floor category (shelves, cabinets, beds, sofas, ...), then
+    // chairs that found no table.
     let mut wall_items: Vec<(String, u32)> = Vec::new();
-    for cat in ["shelf", "cabinet"] {
-        if count(cat) > 0 {
-            wall_items.push((cat.to_string(), count(cat)));
+    for (cat, n) in &requested {
+        let floor = procedural::prior(cat).is_some_and(|p| {
+            p.support == SupportClass::Floor && p.kind != procedural::Kind::ThinCovering
+        });
+        if floor && cat != "table" && cat != "chair" {
+            wall_items.push((cat.clone(), *n));
         }
     }
     if chairs_left > 0 {
@@ -402,8 +406,8 @@ fn place_small_objects(
     {
         let rec = &state.scene.assets[&o.asset];
         for s in &rec.surfaces {
-            // Cabinet interiors stay empty until something asks for them.
-            if o.category == "cabinet" && s.id != "top" {
+            // Interiors behind doors and in drawers stay empty until something asks for them.
+            if (!rec.joints.is_empty() || s.link != rec.root_link) && s.id != "top" {
                 continue;
             }
             slots.push(SurfaceSlot {
