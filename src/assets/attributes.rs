@@ -179,7 +179,10 @@ pub fn is_attribute_word(word: &str) -> bool {
     lex.colors.contains_key(word)
         || lex.material_words.contains_key(word)
         || lex.size_words.contains_key(word)
-        || lex.styles.values().any(|s| s.words.iter().any(|w| w == word))
+        || lex
+            .styles
+            .values()
+            .any(|s| s.words.iter().any(|w| w == word))
 }
 
 #[cfg(test)]
@@ -192,11 +195,18 @@ mod tests {
         let lex = lexicon();
         assert!(lex.colors.len() > 40);
         for (w, m) in &lex.material_words {
-            assert!(material::material(m).is_some(), "{w} -> unknown material {m}");
+            assert!(
+                material::material(m).is_some(),
+                "{w} -> unknown material {m}"
+            );
         }
         for s in lex.styles.values() {
             assert!(material::material(&s.main_material).is_some(), "{}", s.name);
-            assert!(material::material(&s.accent_material).is_some(), "{}", s.name);
+            assert!(
+                material::material(&s.accent_material).is_some(),
+                "{}",
+                s.name
+            );
             assert!(!s.palette.is_empty());
         }
         for c in lex.colors.values() {

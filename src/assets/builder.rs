@@ -138,8 +138,16 @@ impl LinkBuilder {
         let (dx, dy) = (top[0] - foot_xy[0], top[1] - foot_xy[1]);
         let horizontal = (dx * dx + dy * dy).sqrt();
         // The end disc is tilted by the lean angle; its lowest point sits r sin(lean) lower.
-        let lean_sin = horizontal / (horizontal * horizontal + top[2] * top[2]).sqrt().max(1e-12);
-        self.add_rod([foot_xy[0], foot_xy[1], radius * lean_sin], top, radius, color)
+        let lean_sin = horizontal
+            / (horizontal * horizontal + top[2] * top[2])
+                .sqrt()
+                .max(1e-12);
+        self.add_rod(
+            [foot_xy[0], foot_xy[1], radius * lean_sin],
+            top,
+            radius,
+            color,
+        )
     }
 
     /// A polyline of rods through `points` (bent tubes: chair frames, handles, hooks).
@@ -202,7 +210,10 @@ impl LinkBuilder {
         for piece in shapes::solid_lathe_pieces(profile, 16)? {
             self.add_collision(piece.transformed(&at));
         }
-        Ok(self.add_visual(shapes::solid_lathe_mesh(profile, 32).transformed(&at), color))
+        Ok(self.add_visual(
+            shapes::solid_lathe_mesh(profile, 32).transformed(&at),
+            color,
+        ))
     }
 
     /// A hollow vessel (see [`shapes::vessel`]) centred at `(x, y)`, bottom at `z0`.
@@ -239,7 +250,11 @@ impl LinkBuilder {
         let pose = Pose::from_xyz(at[0], at[1], at[2]);
         let s = [scale_xy[0], scale_xy[1], 1.0];
         for piece in pieces {
-            let pts: Vec<[f64; 3]> = piece.vertices.iter().map(|v| [v[0] * s[0], v[1] * s[1], v[2]]).collect();
+            let pts: Vec<[f64; 3]> = piece
+                .vertices
+                .iter()
+                .map(|v| [v[0] * s[0], v[1] * s[1], v[2]])
+                .collect();
             self.add_collision(ConvexPiece::from_points(&pts)?.transformed(&pose));
         }
         Ok(self.add_visual(visual.scaled(s).transformed(&pose), color))
@@ -257,7 +272,12 @@ impl LinkBuilder {
     }
 
     /// A part with a see-through or tinted visual (`rgba`, alpha < 1 blends) and a collision.
-    pub fn add_part_rgba(&mut self, visual: TriMesh, piece: ConvexPiece, rgba: [f64; 4]) -> &mut Self {
+    pub fn add_part_rgba(
+        &mut self,
+        visual: TriMesh,
+        piece: ConvexPiece,
+        rgba: [f64; 4],
+    ) -> &mut Self {
         self.add_collision(piece);
         self.add_visual_rgba(visual, rgba)
     }

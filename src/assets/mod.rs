@@ -8,9 +8,13 @@
 pub mod articulated;
 pub mod attributes;
 mod builder;
+pub mod cache;
+pub mod catalog;
+pub mod external;
 pub mod material;
 pub mod physical;
 pub mod procedural;
+pub mod router;
 pub mod textures;
 pub mod thin;
 

@@ -51,7 +51,10 @@ impl Moments {
     }
 }
 
-fn piece_moments(piece: &ConvexPiece, density: f64) -> Result<(f64, Vector3<f64>, Matrix3<f64>), GeometryError> {
+fn piece_moments(
+    piece: &ConvexPiece,
+    density: f64,
+) -> Result<(f64, Vector3<f64>, Matrix3<f64>), GeometryError> {
     let mp = piece.to_parry()?.mass_properties(density);
     let c = mp.local_com;
     let i = mp.reconstruct_inertia_matrix();
@@ -89,9 +92,10 @@ pub fn shrunk(piece: &ConvexPiece, t: f64) -> Option<ConvexPiece> {
 pub fn mass_props(pieces: &[ConvexPiece], fills: &[Fill]) -> Result<MassProps, GeometryError> {
     let mut m = Moments::default();
     for (k, piece) in pieces.iter().enumerate() {
-        let fill = fills.get(k).copied().ok_or_else(|| {
-            GeometryError::InvalidInertia(format!("piece {k} has no fill"))
-        })?;
+        let fill = fills
+            .get(k)
+            .copied()
+            .ok_or_else(|| GeometryError::InvalidInertia(format!("piece {k} has no fill")))?;
         if !(fill.density.is_finite() && fill.density > 0.0) {
             return Err(GeometryError::InvalidDensity(fill.density));
         }

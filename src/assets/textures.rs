@@ -71,7 +71,13 @@ impl Canvas {
 
     /// Fills the axis-aligned rectangle (in 0..1 image coordinates).
     fn rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64, c: [f64; 3]) {
-        self.each(|u, v, p| if u >= x0 && u < x1 && v >= y0 && v < y1 { c } else { p });
+        self.each(|u, v, p| {
+            if u >= x0 && u < x1 && v >= y0 && v < y1 {
+                c
+            } else {
+                p
+            }
+        });
     }
 
     /// Fills a disc (image coordinates, radius relative to the width).
@@ -91,7 +97,8 @@ impl Canvas {
             let n = pts.len();
             for i in 0..n {
                 let (a, b) = (pts[i], pts[(i + 1) % n]);
-                if (a[1] > v) != (b[1] > v) && u < a[0] + (v - a[1]) / (b[1] - a[1]) * (b[0] - a[0]) {
+                if (a[1] > v) != (b[1] > v) && u < a[0] + (v - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+                {
                     inside = !inside;
                 }
             }
@@ -125,7 +132,9 @@ impl Noise {
         let period = period.max(1);
         Noise {
             period,
-            grid: (0..period * period).map(|_| rng.random_range(0.0..1.0)).collect(),
+            grid: (0..period * period)
+                .map(|_| rng.random_range(0.0..1.0))
+                .collect(),
         }
     }
 
@@ -133,7 +142,10 @@ impl Noise {
     fn at(&self, u: f64, v: f64) -> f64 {
         let p = self.period as f64;
         let (x, y) = (u.rem_euclid(1.0) * p, v.rem_euclid(1.0) * p);
-        let (x0, y0) = (x.floor() as usize % self.period, y.floor() as usize % self.period);
+        let (x0, y0) = (
+            x.floor() as usize % self.period,
+            y.floor() as usize % self.period,
+        );
         let (x1, y1) = ((x0 + 1) % self.period, (y0 + 1) % self.period);
         let s = |t: f64| t * t * (3.0 - 2.0 * t);
         let (fx, fy) = (s(x - x.floor()), s(y - y.floor()));
@@ -245,7 +257,11 @@ fn paint_pattern(c: &mut Canvas, kind: Pattern, colors: &[[f64; 3]], rng: &mut C
                 let g = grain.at(u * 0.25, v * 4.0);
                 let stripes = ((v * rows * 9.0 + g * 6.0).sin() * 0.5 + 0.5) * 0.12;
                 let joint = (v * rows).fract() < 0.03 || (along * 2.0).fract() < 0.008;
-                if joint { scale3(base, 0.45) } else { scale3(base, tint * (0.9 + stripes)) }
+                if joint {
+                    scale3(base, 0.45)
+                } else {
+                    scale3(base, tint * (0.9 + stripes))
+                }
             });
         }
         Pattern::Parquet => {
@@ -254,19 +270,35 @@ fn paint_pattern(c: &mut Canvas, kind: Pattern, colors: &[[f64; 3]], rng: &mut C
                 let n = 8.0;
                 let (x, y) = (u * n, v * n);
                 let cell = ((x.floor() + y.floor()) as i64).rem_euclid(2);
-                let (along, across) = if cell == 0 { (x.fract(), y.fract()) } else { (y.fract(), x.fract()) };
+                let (along, across) = if cell == 0 {
+                    (x.fract(), y.fract())
+                } else {
+                    (y.fract(), x.fract())
+                };
                 let t = 0.88 + 0.18 * grain.at(u * 2.0, v * 2.0) + 0.05 * (along * 20.0).sin();
                 let line = across < 0.04 || along < 0.02;
-                if line { scale3(base, 0.5) } else { scale3(if cell == 0 { base } else { scale3(base, 0.9) }, t) }
+                if line {
+                    scale3(base, 0.5)
+                } else {
+                    scale3(if cell == 0 { base } else { scale3(base, 0.9) }, t)
+                }
             });
         }
         Pattern::Tiles => {
             let tone = Fbm::new(4, 2, rng);
-            let grout = if colors.len() > 1 { col(1) } else { [0.6, 0.6, 0.58] };
+            let grout = if colors.len() > 1 {
+                col(1)
+            } else {
+                [0.6, 0.6, 0.58]
+            };
             c.each(|u, v, _| {
                 let n = 4.0;
                 let (fx, fy) = ((u * n).fract(), (v * n).fract());
-                if fx < 0.025 || fy < 0.025 { grout } else { scale3(base, 0.95 + 0.1 * tone.at(u, v)) }
+                if fx < 0.025 || fy < 0.025 {
+                    grout
+                } else {
+                    scale3(base, 0.95 + 0.1 * tone.at(u, v))
+                }
             });
         }
         Pattern::Carpet => {
@@ -279,15 +311,25 @@ fn paint_pattern(c: &mut Canvas, kind: Pattern, colors: &[[f64; 3]], rng: &mut C
             let pores = Noise::new(64, rng);
             let depth = if kind == Pattern::Concrete { 0.3 } else { 0.1 };
             c.each(|u, v, _| {
-                let pore = if kind == Pattern::Concrete && pores.at(u, v) > 0.92 { 0.75 } else { 1.0 };
+                let pore = if kind == Pattern::Concrete && pores.at(u, v) > 0.92 {
+                    0.75
+                } else {
+                    1.0
+                };
                 scale3(base, (1.0 - depth / 2.0 + depth * f.at(u, v)) * pore)
             });
         }
         Pattern::Marble => {
             let f = Fbm::new(4, 5, rng);
-            let vein = if colors.len() > 1 { col(1) } else { [0.25, 0.25, 0.27] };
+            let vein = if colors.len() > 1 {
+                col(1)
+            } else {
+                [0.25, 0.25, 0.27]
+            };
             c.each(|u, v, _| {
-                let t = (std::f64::consts::TAU * (u + v) + 8.0 * f.at(u, v)).sin().abs();
+                let t = (std::f64::consts::TAU * (u + v) + 8.0 * f.at(u, v))
+                    .sin()
+                    .abs();
                 lerp3(vein, base, t.powf(0.25))
             });
         }
@@ -296,7 +338,13 @@ fn paint_pattern(c: &mut Canvas, kind: Pattern, colors: &[[f64; 3]], rng: &mut C
             let speck = Noise::new(128, rng);
             c.each(|u, v, _| {
                 let s = speck.at(u, v);
-                let k = if s > 0.85 { 1.3 } else if s < 0.15 { 0.6 } else { 1.0 };
+                let k = if s > 0.85 {
+                    1.3
+                } else if s < 0.15 {
+                    0.6
+                } else {
+                    1.0
+                };
                 scale3(base, (0.85 + 0.25 * f.at(u, v)) * k)
             });
         }
@@ -331,7 +379,13 @@ fn paint_pattern(c: &mut Canvas, kind: Pattern, colors: &[[f64; 3]], rng: &mut C
             c.each(|u, v, _| {
                 let band = |t: f64| {
                     let f = (t * 4.0).fract();
-                    if f < 0.25 { 1.0 } else if f > 0.45 && f < 0.52 { 0.6 } else { 0.0 }
+                    if f < 0.25 {
+                        1.0
+                    } else if f > 0.45 && f < 0.52 {
+                        0.6
+                    } else {
+                        0.0
+                    }
                 };
                 let k = 0.5 * (band(u) + band(v));
                 lerp3(base, col(1), k)
@@ -341,7 +395,11 @@ fn paint_pattern(c: &mut Canvas, kind: Pattern, colors: &[[f64; 3]], rng: &mut C
             c.each(|u, v, _| {
                 let n = 6.0;
                 let (fx, fy) = ((u * n).fract() - 0.5, (v * n).fract() - 0.5);
-                if fx * fx + fy * fy < 0.09 { col(1) } else { base }
+                if fx * fx + fy * fy < 0.09 {
+                    col(1)
+                } else {
+                    base
+                }
             });
         }
         Pattern::Kilim => {
@@ -355,16 +413,23 @@ fn paint_pattern(c: &mut Canvas, kind: Pattern, colors: &[[f64; 3]], rng: &mut C
         Pattern::Weave => {
             let f = Fbm::new(32, 2, rng);
             c.each(|u, v, _| {
-                let a = ((u * 64.0 * std::f64::consts::PI).sin() * (v * 64.0 * std::f64::consts::PI).sin()).abs();
+                let a = ((u * 64.0 * std::f64::consts::PI).sin()
+                    * (v * 64.0 * std::f64::consts::PI).sin())
+                .abs();
                 scale3(base, 0.85 + 0.1 * a + 0.1 * f.at(u, v))
             });
         }
         Pattern::Stars | Pattern::Snowflakes | Pattern::Pixels => {
             if kind == Pattern::Pixels {
                 let cells = 16usize;
-                let picks: Vec<usize> = (0..cells * cells).map(|_| rng.random_range(0..colors.len().max(1))).collect();
+                let picks: Vec<usize> = (0..cells * cells)
+                    .map(|_| rng.random_range(0..colors.len().max(1)))
+                    .collect();
                 c.each(|u, v, _| {
-                    let (i, j) = ((u * cells as f64) as usize % cells, (v * cells as f64) as usize % cells);
+                    let (i, j) = (
+                        (u * cells as f64) as usize % cells,
+                        (v * cells as f64) as usize % cells,
+                    );
                     scale3(col(picks[j * cells + i]), 0.9 + 0.1 * ((i + j) % 2) as f64)
                 });
                 return;
@@ -377,7 +442,8 @@ fn paint_pattern(c: &mut Canvas, kind: Pattern, colors: &[[f64; 3]], rng: &mut C
                 if kind == Pattern::Stars {
                     let pts: Vec<[f64; 2]> = (0..10)
                         .map(|i| {
-                            let a = std::f64::consts::TAU * i as f64 / 10.0 - std::f64::consts::FRAC_PI_2;
+                            let a = std::f64::consts::TAU * i as f64 / 10.0
+                                - std::f64::consts::FRAC_PI_2;
                             let rr = if i % 2 == 0 { r } else { r * 0.4 };
                             [cx + rr * a.cos(), cy + rr * a.sin()]
                         })
@@ -405,10 +471,21 @@ fn paint_pattern(c: &mut Canvas, kind: Pattern, colors: &[[f64; 3]], rng: &mut C
 /// A `size` x `size` tileable pattern in the given colours (the first is the ground).
 pub fn pattern(kind: Pattern, colors: &[[f64; 3]], size: u32, seed: u64) -> Texture {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let colors: Vec<[f64; 3]> = if colors.is_empty() { vec![[0.5, 0.5, 0.5]] } else { colors.to_vec() };
+    let colors: Vec<[f64; 3]> = if colors.is_empty() {
+        vec![[0.5, 0.5, 0.5]]
+    } else {
+        colors.to_vec()
+    };
     let mut c = Canvas::new(size, size, colors[0]);
     paint_pattern(&mut c, kind, &colors, &mut rng);
-    let name = format!("{}_{}", serde_json::to_value(kind).ok().and_then(|v| v.as_str().map(String::from)).unwrap_or_default(), short_hash(&colors, seed));
+    let name = format!(
+        "{}_{}",
+        serde_json::to_value(kind)
+            .ok()
+            .and_then(|v| v.as_str().map(String::from))
+            .unwrap_or_default(),
+        short_hash(&colors, seed)
+    );
     c.texture(&name)
 }
 
@@ -425,9 +502,8 @@ pub fn surface_texture(material: &str, seed: u64) -> SurfaceTexture {
     let mat_color = super::material::material(material).map(|m| m.color);
     let base = mat_color.unwrap_or([0.5, 0.5, 0.5]);
     let (kind, colors, repeat): (Pattern, Vec<[f64; 3]>, f64) = match material {
-        "wood" | "oak" | "walnut" | "pine" | "cherry" | "maple" | "mahogany" | "teak" | "birch" | "bamboo" | "laminate" => {
-            (Pattern::Planks, vec![base], 2.0)
-        }
+        "wood" | "oak" | "walnut" | "pine" | "cherry" | "maple" | "mahogany" | "teak" | "birch"
+        | "bamboo" | "laminate" => (Pattern::Planks, vec![base], 2.0),
         "parquet" => (Pattern::Parquet, vec![[0.55, 0.38, 0.22]], 1.0),
         "tile" | "ceramic" | "porcelain" => (Pattern::Tiles, vec![base, [0.62, 0.62, 0.6]], 1.2),
         "carpet" | "wool" | "felt" => (Pattern::Carpet, vec![base], 1.0),
@@ -466,8 +542,19 @@ pub enum Art {
 /// Generated artwork, `w` x `h` pixels, in a palette (the style's, or a default).
 pub fn artwork(kind: Art, palette: &[[f64; 3]], w: u32, h: u32, seed: u64) -> Texture {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let default = [[0.55, 0.05, 0.04], [0.05, 0.2, 0.5], [0.8, 0.55, 0.08], [0.1, 0.35, 0.12], [0.85, 0.85, 0.82], [0.04, 0.04, 0.05]];
-    let pal: Vec<[f64; 3]> = if palette.is_empty() { default.to_vec() } else { palette.to_vec() };
+    let default = [
+        [0.55, 0.05, 0.04],
+        [0.05, 0.2, 0.5],
+        [0.8, 0.55, 0.08],
+        [0.1, 0.35, 0.12],
+        [0.85, 0.85, 0.82],
+        [0.04, 0.04, 0.05],
+    ];
+    let pal: Vec<[f64; 3]> = if palette.is_empty() {
+        default.to_vec()
+    } else {
+        palette.to_vec()
+    };
     let p = |i: usize| pal[i % pal.len()];
     let mut c = Canvas::new(w, h, p(0));
     match kind {
@@ -478,13 +565,28 @@ pub fn artwork(kind: Art, palette: &[[f64; 3]], w: u32, h: u32, seed: u64) -> Te
             let sun = (rng.random_range(0.2..0.8), rng.random_range(0.15..0.35));
             c.disc(sun.0, sun.1, 0.07, [1.0, 0.85, 0.4]);
             let hills = Fbm::new(4, 3, &mut rng);
-            for (k, (level, col)) in [(0.55, [0.25, 0.4, 0.25]), (0.68, [0.12, 0.3, 0.12])].iter().enumerate() {
+            for (k, (level, col)) in [(0.55, [0.25, 0.4, 0.25]), (0.68, [0.12, 0.3, 0.12])]
+                .iter()
+                .enumerate()
+            {
                 let off = k as f64 * 0.37;
                 let col = *col;
                 let level = *level;
-                c.each(|u, v, px| if v > level - 0.12 * hills.at(u + off, 0.5) { col } else { px });
+                c.each(|u, v, px| {
+                    if v > level - 0.12 * hills.at(u + off, 0.5) {
+                        col
+                    } else {
+                        px
+                    }
+                });
             }
-            c.each(|u, v, px| if v > 0.8 && (u - 0.6).abs() < 0.3 - (v - 0.8) { [0.2, 0.35, 0.6] } else { px });
+            c.each(|u, v, px| {
+                if v > 0.8 && (u - 0.6).abs() < 0.3 - (v - 0.8) {
+                    [0.2, 0.35, 0.6]
+                } else {
+                    px
+                }
+            });
         }
         Art::Abstract => {
             for k in 0..9 {
@@ -495,7 +597,10 @@ pub fn artwork(kind: Art, palette: &[[f64; 3]], w: u32, h: u32, seed: u64) -> Te
                 let pts: Vec<[f64; 2]> = (0..n)
                     .map(|i| {
                         let a = rot + std::f64::consts::TAU * i as f64 / n as f64;
-                        [cx + r * a.cos(), cy + r * a.sin() * rng.random_range(0.6..1.4)]
+                        [
+                            cx + r * a.cos(),
+                            cy + r * a.sin() * rng.random_range(0.6..1.4),
+                        ]
                     })
                     .collect();
                 c.polygon(&pts, p(k + 1));
@@ -513,9 +618,29 @@ pub fn artwork(kind: Art, palette: &[[f64; 3]], w: u32, h: u32, seed: u64) -> Te
             }
         }
         Art::StillLife => {
-            c.each(|_u, v, _| if v > 0.7 { [0.35, 0.2, 0.1] } else { scale3(p(4), 0.7) });
-            c.polygon(&[[0.4, 0.7], [0.6, 0.7], [0.62, 0.45], [0.55, 0.3], [0.45, 0.3], [0.38, 0.45]], p(1));
-            for (x, col) in [(0.25, [0.7, 0.08, 0.05]), (0.72, [0.9, 0.5, 0.05]), (0.8, [0.5, 0.6, 0.1])] {
+            c.each(|_u, v, _| {
+                if v > 0.7 {
+                    [0.35, 0.2, 0.1]
+                } else {
+                    scale3(p(4), 0.7)
+                }
+            });
+            c.polygon(
+                &[
+                    [0.4, 0.7],
+                    [0.6, 0.7],
+                    [0.62, 0.45],
+                    [0.55, 0.3],
+                    [0.45, 0.3],
+                    [0.38, 0.45],
+                ],
+                p(1),
+            );
+            for (x, col) in [
+                (0.25, [0.7, 0.08, 0.05]),
+                (0.72, [0.9, 0.5, 0.05]),
+                (0.8, [0.5, 0.6, 0.1]),
+            ] {
                 c.disc(x, 0.66, 0.06, col);
             }
         }
@@ -526,7 +651,10 @@ pub fn artwork(kind: Art, palette: &[[f64; 3]], w: u32, h: u32, seed: u64) -> Te
                 .map(|i| {
                     let a = std::f64::consts::TAU * i as f64 / 10.0 - std::f64::consts::FRAC_PI_2;
                     let rr = if i % 2 == 0 { 0.22 } else { 0.09 };
-                    [0.5 + rr * a.cos(), 0.42 + rr * a.sin() * w as f64 / h as f64]
+                    [
+                        0.5 + rr * a.cos(),
+                        0.42 + rr * a.sin() * w as f64 / h as f64,
+                    ]
                 })
                 .collect();
             c.polygon(&star, p(2));
@@ -536,7 +664,11 @@ pub fn artwork(kind: Art, palette: &[[f64; 3]], w: u32, h: u32, seed: u64) -> Te
         Art::PopArt => {
             c.each(|u, v, _| {
                 let (fx, fy) = ((u * 24.0).fract() - 0.5, (v * 24.0).fract() - 0.5);
-                if fx * fx + fy * fy < 0.08 { scale3(p(1), 0.8) } else { p(0) }
+                if fx * fx + fy * fy < 0.08 {
+                    scale3(p(1), 0.8)
+                } else {
+                    p(0)
+                }
             });
             let burst: Vec<[f64; 2]> = (0..16)
                 .map(|i| {
@@ -549,7 +681,13 @@ pub fn artwork(kind: Art, palette: &[[f64; 3]], w: u32, h: u32, seed: u64) -> Te
             c.disc(0.5, 0.5, 0.15, p(3));
         }
     }
-    let name = format!("art_{}", short_hash(&pal, seed ^ (kind as u64) << 32 ^ u64::from(w) << 16 ^ u64::from(h)));
+    let name = format!(
+        "art_{}",
+        short_hash(
+            &pal,
+            seed ^ (kind as u64) << 32 ^ u64::from(w) << 16 ^ u64::from(h)
+        )
+    );
     c.texture(&name)
 }
 
@@ -557,7 +695,11 @@ pub fn artwork(kind: Art, palette: &[[f64; 3]], w: u32, h: u32, seed: u64) -> Te
 /// medallion; round rugs get concentric rings. Not tileable: one image covers the rug.
 pub fn rug(palette: &[[f64; 3]], motif: Pattern, round: bool, size: u32, seed: u64) -> Texture {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let pal: Vec<[f64; 3]> = if palette.len() >= 3 { palette.to_vec() } else { vec![[0.45, 0.08, 0.08], [0.85, 0.75, 0.55], [0.1, 0.15, 0.35]] };
+    let pal: Vec<[f64; 3]> = if palette.len() >= 3 {
+        palette.to_vec()
+    } else {
+        vec![[0.45, 0.08, 0.08], [0.85, 0.75, 0.55], [0.1, 0.15, 0.35]]
+    };
     let mut field = Canvas::new(size, size, pal[0]);
     let field_colors = [pal[0], pal[1 % pal.len()], pal[2 % pal.len()]];
     paint_pattern(&mut field, motif, &field_colors, &mut rng);
@@ -568,7 +710,10 @@ pub fn rug(palette: &[[f64; 3]], motif: Pattern, round: bool, size: u32, seed: u
     let n = size as usize;
     for y in 0..n {
         for x in 0..n {
-            let (u, v) = ((x as f64 + 0.5) / size as f64, (y as f64 + 0.5) / size as f64);
+            let (u, v) = (
+                (x as f64 + 0.5) / size as f64,
+                (y as f64 + 0.5) / size as f64,
+            );
             let edge = if round {
                 0.5 - ((u - 0.5).powi(2) + (v - 0.5).powi(2)).sqrt()
             } else {
@@ -592,7 +737,10 @@ pub fn rug(palette: &[[f64; 3]], motif: Pattern, round: bool, size: u32, seed: u
             c.px[y * n + x] = scale3(col, 0.88 + 0.2 * fibre.at(u, v));
         }
     }
-    c.texture(&format!("rug_{}", short_hash(&pal, seed ^ u64::from(round))))
+    c.texture(&format!(
+        "rug_{}",
+        short_hash(&pal, seed ^ u64::from(round))
+    ))
 }
 
 #[cfg(test)]
@@ -606,38 +754,64 @@ mod tests {
 
     #[test]
     fn surface_textures_tile_and_repeat() {
-        for m in ["oak", "tile", "carpet", "concrete", "plaster", "marble", "stone", "brick", "parquet"] {
+        for m in [
+            "oak", "tile", "carpet", "concrete", "plaster", "marble", "stone", "brick", "parquet",
+        ] {
             let s = surface_texture(m, 3);
             assert_eq!((s.texture.width, s.texture.height), (256, 256));
             assert!(s.metres_per_repeat > 0.1 && s.metres_per_repeat < 5.0);
             let t = &s.texture;
             // Seamless noise: the wrap-around step is no bigger than a typical step inside.
             if matches!(m, "carpet" | "concrete" | "plaster" | "marble" | "stone") {
-                let step = |a: [u8; 4], b: [u8; 4]| (0..3).map(|k| (a[k] as i64 - b[k] as i64).abs()).sum::<i64>();
+                let step = |a: [u8; 4], b: [u8; 4]| {
+                    (0..3)
+                        .map(|k| (a[k] as i64 - b[k] as i64).abs())
+                        .sum::<i64>()
+                };
                 let mut edge = 0i64;
                 let mut inner = 0i64;
                 for y in 0..t.height {
                     edge += step(pixel(t, 0, y), pixel(t, t.width - 1, y));
-                    inner += (1..t.width).map(|x| step(pixel(t, x - 1, y), pixel(t, x, y))).sum::<i64>();
+                    inner += (1..t.width)
+                        .map(|x| step(pixel(t, x - 1, y), pixel(t, x, y)))
+                        .sum::<i64>();
                 }
                 let mean = inner as f64 / (t.width - 1) as f64;
-                assert!((edge as f64) < mean * 3.0 + 500.0, "{m}: seam {edge} vs mean step {mean}");
+                assert!(
+                    (edge as f64) < mean * 3.0 + 500.0,
+                    "{m}: seam {edge} vs mean step {mean}"
+                );
             }
             // Not a flat colour.
-            let distinct: std::collections::BTreeSet<[u8; 4]> =
-                (0..t.height).step_by(7).flat_map(|y| (0..t.width).step_by(5).map(move |x| (x, y))).map(|(x, y)| pixel(t, x, y)).collect();
+            let distinct: std::collections::BTreeSet<[u8; 4]> = (0..t.height)
+                .step_by(7)
+                .flat_map(|y| (0..t.width).step_by(5).map(move |x| (x, y)))
+                .map(|(x, y)| pixel(t, x, y))
+                .collect();
             assert!(distinct.len() > 10, "{m} is flat");
         }
         assert_eq!(surface_texture("oak", 3), surface_texture("oak", 3));
-        assert_ne!(surface_texture("oak", 3).texture.rgba, surface_texture("oak", 4).texture.rgba);
+        assert_ne!(
+            surface_texture("oak", 3).texture.rgba,
+            surface_texture("oak", 4).texture.rgba
+        );
     }
 
     #[test]
     fn artwork_and_rugs_are_varied_images() {
-        for kind in [Art::Landscape, Art::Abstract, Art::StillLife, Art::Poster, Art::PopArt] {
+        for kind in [
+            Art::Landscape,
+            Art::Abstract,
+            Art::StillLife,
+            Art::Poster,
+            Art::PopArt,
+        ] {
             let t = artwork(kind, &[], 128, 96, 1);
             assert_eq!(t.rgba.len(), 128 * 96 * 4);
-            let distinct: std::collections::BTreeSet<[u8; 4]> = (0..96).flat_map(|y| (0..128).map(move |x| (x, y))).map(|(x, y)| pixel(&t, x, y)).collect();
+            let distinct: std::collections::BTreeSet<[u8; 4]> = (0..96)
+                .flat_map(|y| (0..128).map(move |x| (x, y)))
+                .map(|(x, y)| pixel(&t, x, y))
+                .collect();
             assert!(distinct.len() > 3, "{kind:?}");
         }
         let r = rug(&[], Pattern::Kilim, false, 128, 2);

@@ -63,11 +63,27 @@ fn rug(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         b.add_collision(ConvexPiece::cylinder(0.0, 0.0, r, 0.0, h, 24)?);
         b.add_textured_visual(m, tex);
     } else {
-        let repeat = if ctx.variant == "runner" { [1.0, (d / w).max(1.0).round()] } else { [1.0, 1.0] };
+        let repeat = if ctx.variant == "runner" {
+            [1.0, (d / w).max(1.0).round()]
+        } else {
+            [1.0, 1.0]
+        };
         b.add_collision(ConvexPiece::cuboid([0.0, 0.0, h / 2.0], [w, d, h])?);
-        b.add_textured_visual(textured_slab([0.0, 0.0, h / 2.0], [w, d, h], TexFace::Top, repeat), tex);
+        b.add_textured_visual(
+            textured_slab([0.0, 0.0, h / 2.0], [w, d, h], TexFace::Top, repeat),
+            tex,
+        );
     }
-    single(b.finish()?, vec![super::procedural::parts::surface("top", "body", [0.0, 0.0, h], [w, d], 2.5)])
+    single(
+        b.finish()?,
+        vec![super::procedural::parts::surface(
+            "top",
+            "body",
+            [0.0, 0.0, h],
+            [w, d],
+            2.5,
+        )],
+    )
 }
 
 /// Tablecloths (`""`) and placemats (`placemat`): thin fabric slabs with a tileable pattern
@@ -82,15 +98,33 @@ fn table_linen(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         None if ctx.variant == "placemat" => Pattern::Weave,
         None => [Pattern::Checker, Pattern::Plaid, Pattern::Stripes][seed as usize % 3],
     };
-    let colors = if kind == Pattern::Checker { vec![palette[0], [0.95, 0.95, 0.93]] } else { palette };
+    let colors = if kind == Pattern::Checker {
+        vec![palette[0], [0.95, 0.95, 0.93]]
+    } else {
+        palette
+    };
     let tex = textures::pattern(kind, &colors, 128, seed);
     let tile = if ctx.variant == "placemat" { 0.45 } else { 0.5 };
     b.add_collision(ConvexPiece::cuboid([0.0, 0.0, h / 2.0], [w, d, h])?);
     b.add_textured_visual(
-        textured_slab([0.0, 0.0, h / 2.0], [w, d, h], TexFace::Top, [w / tile, d / tile]),
+        textured_slab(
+            [0.0, 0.0, h / 2.0],
+            [w, d, h],
+            TexFace::Top,
+            [w / tile, d / tile],
+        ),
         tex,
     );
-    single(b.finish()?, vec![super::procedural::parts::surface("top", "body", [0.0, 0.0, h], [w, d], 1.0)])
+    single(
+        b.finish()?,
+        vec![super::procedural::parts::surface(
+            "top",
+            "body",
+            [0.0, 0.0, h],
+            [w, d],
+            1.0,
+        )],
+    )
 }
 
 /// Pictures on a wall: `poster` (a printed sheet), `""` painting (canvas on a stretcher in a
@@ -100,7 +134,11 @@ fn picture(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
     let mut b = body(ctx);
     let seed = seed_of(ctx);
-    let palette: Vec<[f64; 3]> = ctx.style.as_ref().map(|s| s.palette.clone()).unwrap_or_default();
+    let palette: Vec<[f64; 3]> = ctx
+        .style
+        .as_ref()
+        .map(|s| s.palette.clone())
+        .unwrap_or_default();
     let art = match ctx.style_name() {
         "cubist" | "art_deco" | "modern" | "minimalist" | "mid_century" => Art::Abstract,
         "pop_art" | "superhero" => Art::PopArt,
@@ -113,7 +151,15 @@ fn picture(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let tex = textures::artwork(art, &palette, px_w, px_h, seed);
     if ctx.variant == "poster" {
         b.add_collision(ConvexPiece::cuboid([0.0, d / 2.0, h / 2.0], [w, d, h])?);
-        b.add_textured_visual(textured_slab([0.0, d / 2.0, h / 2.0], [w, d, h], TexFace::Front, [1.0, 1.0]), tex);
+        b.add_textured_visual(
+            textured_slab(
+                [0.0, d / 2.0, h / 2.0],
+                [w, d, h],
+                TexFace::Front,
+                [1.0, 1.0],
+            ),
+            tex,
+        );
         return single(b.finish()?, vec![]);
     }
     let f = (w.min(h) * 0.06).clamp(0.02, 0.07);
@@ -121,20 +167,48 @@ fn picture(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     b.add_box([0.0, d / 2.0, f / 2.0], [w, d, f], frame)?;
     b.add_box([0.0, d / 2.0, h - f / 2.0], [w, d, f], frame)?;
     for sx in [-1.0, 1.0] {
-        b.add_box([sx * (w / 2.0 - f / 2.0), d / 2.0, h / 2.0], [f, d, h - 2.0 * f], frame)?;
+        b.add_box(
+            [sx * (w / 2.0 - f / 2.0), d / 2.0, h / 2.0],
+            [f, d, h - 2.0 * f],
+            frame,
+        )?;
     }
     let inner = [w - 2.0 * f, h - 2.0 * f];
-    let (img, mat_border) = if ctx.variant == "photo" { ([inner[0] * 0.75, inner[1] * 0.75], true) } else { (inner, false) };
+    let (img, mat_border) = if ctx.variant == "photo" {
+        ([inner[0] * 0.75, inner[1] * 0.75], true)
+    } else {
+        (inner, false)
+    };
     let depth = d * 0.6;
     if mat_border {
         // The mat carries the collision; the print sits 1.5 mm proud of it.
-        b.add_box([0.0, depth / 2.0, h / 2.0], [inner[0], depth, inner[1]], [0.95, 0.94, 0.9])?;
+        b.add_box(
+            [0.0, depth / 2.0, h / 2.0],
+            [inner[0], depth, inner[1]],
+            [0.95, 0.94, 0.9],
+        )?;
         let pd = depth + 0.0015;
-        b.add_textured_visual(textured_slab([0.0, pd / 2.0, h / 2.0], [img[0], pd, img[1]], TexFace::Front, [1.0, 1.0]), tex);
-    } else {
-        b.add_collision(ConvexPiece::cuboid([0.0, depth / 2.0, h / 2.0], [img[0], depth, img[1]])?);
         b.add_textured_visual(
-            textured_slab([0.0, depth / 2.0, h / 2.0], [img[0], depth, img[1]], TexFace::Front, [1.0, 1.0]),
+            textured_slab(
+                [0.0, pd / 2.0, h / 2.0],
+                [img[0], pd, img[1]],
+                TexFace::Front,
+                [1.0, 1.0],
+            ),
+            tex,
+        );
+    } else {
+        b.add_collision(ConvexPiece::cuboid(
+            [0.0, depth / 2.0, h / 2.0],
+            [img[0], depth, img[1]],
+        )?);
+        b.add_textured_visual(
+            textured_slab(
+                [0.0, depth / 2.0, h / 2.0],
+                [img[0], depth, img[1]],
+                TexFace::Front,
+                [1.0, 1.0],
+            ),
             tex,
         );
     }

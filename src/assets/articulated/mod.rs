@@ -26,7 +26,12 @@ pub fn self_collisions(
     let shapes: Vec<Vec<_>> = asset
         .links
         .iter()
-        .map(|l| l.collisions.iter().filter_map(|p| p.to_parry().ok()).collect())
+        .map(|l| {
+            l.collisions
+                .iter()
+                .filter_map(|p| p.to_parry().ok())
+                .collect()
+        })
         .collect();
     let mut out = Vec::new();
     for i in 0..asset.links.len() {
@@ -40,7 +45,11 @@ pub fn self_collisions(
                 }
             }
             if deepest > tolerance {
-                out.push((asset.links[i].name.clone(), asset.links[j].name.clone(), deepest));
+                out.push((
+                    asset.links[i].name.clone(),
+                    asset.links[j].name.clone(),
+                    deepest,
+                ));
             }
         }
     }
@@ -53,11 +62,20 @@ pub fn check_configurations(asset: &Asset) -> Vec<BTreeMap<String, f64>> {
     let mut out = vec![BTreeMap::new()];
     for j in &asset.joints {
         for f in [0.5, 1.0] {
-            out.push(BTreeMap::from([(j.name.clone(), j.lower + f * (j.upper - j.lower))]));
+            out.push(BTreeMap::from([(
+                j.name.clone(),
+                j.lower + f * (j.upper - j.lower),
+            )]));
         }
     }
     if asset.joints.len() > 1 {
-        out.push(asset.joints.iter().map(|j| (j.name.clone(), j.upper)).collect());
+        out.push(
+            asset
+                .joints
+                .iter()
+                .map(|j| (j.name.clone(), j.upper))
+                .collect(),
+        );
     }
     out
 }

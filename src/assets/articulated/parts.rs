@@ -90,10 +90,18 @@ pub fn drawer(
     let y_back = -depth;
     let side_len = depth + FRONT_GAP;
     let side_cy = y_back + side_len / 2.0;
-    b.add_box([0.0, side_cy, bz + tb / 2.0], [bw, side_len, tb], look.inner)?;
+    b.add_box(
+        [0.0, side_cy, bz + tb / 2.0],
+        [bw, side_len, tb],
+        look.inner,
+    )?;
     for sx in [-1.0, 1.0] {
         b.add_box(
-            [sx * (bw / 2.0 - t / 2.0), side_cy, bz + tb + (bh - tb) / 2.0],
+            [
+                sx * (bw / 2.0 - t / 2.0),
+                side_cy,
+                bz + tb + (bh - tb) / 2.0,
+            ],
             [t, side_len, bh - tb],
             look.inner,
         )?;
@@ -128,7 +136,11 @@ pub fn drawer(
     let surface = SurfaceRecord {
         id: name.to_string(),
         link: name.to_string(),
-        center: [xc, y_front + y_back + t + inner_d / 2.0, opening.z0 + bz + tb],
+        center: [
+            xc,
+            y_front + y_back + t + inner_d / 2.0,
+            opening.z0 + bz + tb,
+        ],
         size: [inner_w, inner_d],
         clearance: bh - tb,
     };
@@ -175,7 +187,11 @@ pub fn door(
     };
     let mut b = LinkBuilder::new(
         name,
-        Pose::from_xyz(origin_x, y_front + FRONT_GAP + thickness, opening.z0 - overlay),
+        Pose::from_xyz(
+            origin_x,
+            y_front + FRONT_GAP + thickness,
+            opening.z0 - overlay,
+        ),
         look.material,
     );
     let cx = sx * w / 2.0;
@@ -184,8 +200,16 @@ pub fn door(
         let f = (w.min(h) * 0.12).clamp(0.025, 0.07);
         b.add_box([cx, yc, f / 2.0], [w, thickness, f], look.front)?;
         b.add_box([cx, yc, h - f / 2.0], [w, thickness, f], look.front)?;
-        b.add_box([sx * f / 2.0, yc, h / 2.0], [f, thickness, h - 2.0 * f], look.front)?;
-        b.add_box([sx * (w - f / 2.0), yc, h / 2.0], [f, thickness, h - 2.0 * f], look.front)?;
+        b.add_box(
+            [sx * f / 2.0, yc, h / 2.0],
+            [f, thickness, h - 2.0 * f],
+            look.front,
+        )?;
+        b.add_box(
+            [sx * (w - f / 2.0), yc, h / 2.0],
+            [f, thickness, h - 2.0 * f],
+            look.front,
+        )?;
         let pane = [w - 2.0 * f, 0.005, h - 2.0 * f];
         b.density(2500.0);
         b.add_part_rgba(
@@ -200,12 +224,22 @@ pub fn door(
     match hinge {
         Hinge::Left | Hinge::Right => {
             let len = (h * 0.18).clamp(0.08, 0.35);
-            let z = if h > 1.2 { 1.0 - (opening.z0 - overlay) } else { h * 0.5 };
+            let z = if h > 1.2 {
+                1.0 - (opening.z0 - overlay)
+            } else {
+                h * 0.5
+            };
             let z = z.clamp(len / 2.0 + 0.02, h - len / 2.0 - 0.02);
             bar_handle(&mut b, [sx * (w - 0.045), 0.0, z], len, true, look.handle)?;
         }
         Hinge::Bottom => {
-            bar_handle(&mut b, [cx, 0.0, h - 0.05], (w * 0.6).min(0.5), false, look.handle)?;
+            bar_handle(
+                &mut b,
+                [cx, 0.0, h - 0.05],
+                (w * 0.6).min(0.5),
+                false,
+                look.handle,
+            )?;
         }
     }
     let joint = Joint {
@@ -238,11 +272,39 @@ pub fn door_pair(
 ) -> Result<[(Link, Joint); 2], GeometryError> {
     let mid = (opening.x0 + opening.x1) / 2.0;
     let half_gap = 0.0015;
-    let left = Opening { x1: mid - half_gap - overlay, ..opening };
-    let right = Opening { x0: mid + half_gap + overlay, ..opening };
+    let left = Opening {
+        x1: mid - half_gap - overlay,
+        ..opening
+    };
+    let right = Opening {
+        x0: mid + half_gap + overlay,
+        ..opening
+    };
     Ok([
-        door("door_left", parent, left, y_front, overlay, thickness, Hinge::Left, upper, glass, look)?,
-        door("door_right", parent, right, y_front, overlay, thickness, Hinge::Right, upper, glass, look)?,
+        door(
+            "door_left",
+            parent,
+            left,
+            y_front,
+            overlay,
+            thickness,
+            Hinge::Left,
+            upper,
+            glass,
+            look,
+        )?,
+        door(
+            "door_right",
+            parent,
+            right,
+            y_front,
+            overlay,
+            thickness,
+            Hinge::Right,
+            upper,
+            glass,
+            look,
+        )?,
     ])
 }
 
@@ -267,7 +329,11 @@ pub fn lid(
         Pose::from_xyz(x[0], y[0], z_top + FRONT_GAP + thickness),
         look.material,
     );
-    b.add_box([w / 2.0, d / 2.0, -thickness / 2.0], [w, d, thickness], look.front)?;
+    b.add_box(
+        [w / 2.0, d / 2.0, -thickness / 2.0],
+        [w, d, thickness],
+        look.front,
+    )?;
     let joint = Joint {
         name: format!("{name}_hinge"),
         kind: JointKind::Revolute,

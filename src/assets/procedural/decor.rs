@@ -34,6 +34,7 @@ pub(super) const GENERATORS: &[(&str, GeneratorFn)] = &[
     ("globe", globe),
     ("trophy", trophy),
     ("statuette", statuette),
+    ("pen", pen),
 ];
 
 /// Vase: an open bellied vessel with a neck.
@@ -41,9 +42,24 @@ fn vase(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, _d, h] = ctx.size;
     let r = w / 2.0;
     let mut b = body(ctx);
-    let outer = [(r * 0.6, 0.0), (r, h * 0.35), (r * 0.85, h * 0.6), (r * 0.45, h * 0.85), (r * 0.55, h)];
+    let outer = [
+        (r * 0.6, 0.0),
+        (r, h * 0.35),
+        (r * 0.85, h * 0.6),
+        (r * 0.45, h * 0.85),
+        (r * 0.55, h),
+    ];
     b.add_vessel([0.0; 3], &outer, 0.004, 0.01, 10, ctx.color)?;
-    single(b.finish()?, vec![surface("inside", "body", [0.0, 0.0, 0.01], [r * 0.6, r * 0.6], h)])
+    single(
+        b.finish()?,
+        vec![surface(
+            "inside",
+            "body",
+            [0.0, 0.0, 0.01],
+            [r * 0.6, r * 0.6],
+            h,
+        )],
+    )
 }
 
 /// Flowers in a vase: a short vase, green stems and coloured blossoms.
@@ -52,19 +68,57 @@ fn flowers(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let mut b = body(ctx);
     let vr = w.min(d) / 2.0 * 0.45;
     let vh = h * 0.4;
-    b.add_vessel([0.0; 3], &[(vr * 0.8, 0.0), (vr, vh * 0.6), (vr * 0.7, vh)], 0.003, 0.008, 8, [0.8, 0.88, 0.92])?;
+    b.add_vessel(
+        [0.0; 3],
+        &[(vr * 0.8, 0.0), (vr, vh * 0.6), (vr * 0.7, vh)],
+        0.003,
+        0.008,
+        8,
+        [0.8, 0.88, 0.92],
+    )?;
     // One bloom in the middle and eight around it, the outer ones reaching the full width.
     let n = 9;
     let reach = w.min(d) / 2.0 - 0.03;
     for i in 0..n {
         let a = std::f64::consts::TAU * (i as f64 - 1.0) / 8.0;
-        let spread = if i == 0 { 0.0 } else { reach * if i % 2 == 1 { 1.0 } else { 0.7 } };
-        let top = [spread * a.cos(), spread * a.sin(), h - 0.025 - 0.06 * ((i % 2) as f64)];
-        b.add_visual(shapes::frustum_mesh([0.0, 0.0, vh * 0.5], top, 0.003, 0.003, 6), LEAF);
+        let spread = if i == 0 {
+            0.0
+        } else {
+            reach * if i % 2 == 1 { 1.0 } else { 0.7 }
+        };
+        let top = [
+            spread * a.cos(),
+            spread * a.sin(),
+            h - 0.025 - 0.06 * ((i % 2) as f64),
+        ];
+        b.add_visual(
+            shapes::frustum_mesh([0.0, 0.0, vh * 0.5], top, 0.003, 0.003, 6),
+            LEAF,
+        );
         let color = ctx.palette(i);
-        b.add_ellipsoid(top, [0.03, 0.03, 0.025], if ctx.style.is_none() { [[0.8, 0.1, 0.2], [0.95, 0.8, 0.1], [0.9, 0.5, 0.7], [0.95, 0.95, 0.9]][i % 4] } else { color })?;
+        b.add_ellipsoid(
+            top,
+            [0.03, 0.03, 0.025],
+            if ctx.style.is_none() {
+                [
+                    [0.8, 0.1, 0.2],
+                    [0.95, 0.8, 0.1],
+                    [0.9, 0.5, 0.7],
+                    [0.95, 0.95, 0.9],
+                ][i % 4]
+            } else {
+                color
+            },
+        )?;
         if i % 3 == 1 {
-            leaf(&mut b, [top[0] * 0.5, top[1] * 0.5, vh + (top[2] - vh) * 0.4], Vector3::new(a.cos(), a.sin(), 0.6), reach * 0.35, 0.02, LEAF)?;
+            leaf(
+                &mut b,
+                [top[0] * 0.5, top[1] * 0.5, vh + (top[2] - vh) * 0.4],
+                Vector3::new(a.cos(), a.sin(), 0.6),
+                reach * 0.35,
+                0.02,
+                LEAF,
+            )?;
         }
     }
     single(b.finish()?, vec![])
@@ -77,8 +131,20 @@ fn candle(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let mut b = body(ctx);
     let wax_h = h - 0.02;
     b.add_cylinder([0.0, 0.0], r, 0.0, wax_h, ctx.color)?;
-    b.add_visual(shapes::frustum_mesh([0.0, 0.0, wax_h], [0.0, 0.0, wax_h + 0.006], 0.001, 0.001, 6), BLACK);
-    b.add_visual(shapes::ellipsoid_mesh([0.0, 0.0, wax_h + 0.012], [0.004, 0.004, 0.008], 8), [1.0, 0.7, 0.2]);
+    b.add_visual(
+        shapes::frustum_mesh(
+            [0.0, 0.0, wax_h],
+            [0.0, 0.0, wax_h + 0.006],
+            0.001,
+            0.001,
+            6,
+        ),
+        BLACK,
+    );
+    b.add_visual(
+        shapes::ellipsoid_mesh([0.0, 0.0, wax_h + 0.012], [0.004, 0.004, 0.008], 8),
+        [1.0, 0.7, 0.2],
+    );
     single(b.finish()?, vec![])
 }
 
@@ -99,9 +165,18 @@ fn picture_frame(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         ConvexPiece::cuboid([0.0, 0.0, fh / 2.0], frame_size)?.transformed(&pose),
         ctx.color,
     );
-    let photo = mesh::box_mesh([0.0, t / 2.0 + 0.0005, fh / 2.0], [w * 0.75, 0.001, fh * 0.75]).transformed(&pose);
+    let photo = mesh::box_mesh(
+        [0.0, t / 2.0 + 0.0005, fh / 2.0],
+        [w * 0.75, 0.001, fh * 0.75],
+    )
+    .transformed(&pose);
     b.add_visual(photo, ctx.palette(1));
-    b.add_rod([0.0, d / 2.0 - t - fh * 0.3 * tilt.sin(), fh * 0.3], [0.0, -d / 2.0 + 0.004, 0.004], 0.004, shade(ctx.color, 0.7))?;
+    b.add_rod(
+        [0.0, d / 2.0 - t - fh * 0.3 * tilt.sin(), fh * 0.3],
+        [0.0, -d / 2.0 + 0.004, 0.004],
+        0.004,
+        shade(ctx.color, 0.7),
+    )?;
     single(b.finish()?, vec![])
 }
 
@@ -116,11 +191,32 @@ fn table_clock(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         shapes::frustum_piece([0.0, -d / 2.0, zc], [0.0, d / 2.0, zc], r, r, 16)?,
         ctx.color,
     );
-    b.add_visual(shapes::frustum_mesh([0.0, d / 2.0 - 0.001, zc], [0.0, d / 2.0 + 0.0005, zc], r * 0.85, r * 0.85, 32), WHITE);
-    b.add_detail([0.0, d / 2.0 + 0.001, zc + r * 0.25], [0.004, 0.001, r * 0.5], BLACK);
-    b.add_detail([r * 0.18, d / 2.0 + 0.0012, zc], [r * 0.36, 0.001, 0.004], BLACK);
+    b.add_visual(
+        shapes::frustum_mesh(
+            [0.0, d / 2.0 - 0.001, zc],
+            [0.0, d / 2.0 + 0.0005, zc],
+            r * 0.85,
+            r * 0.85,
+            32,
+        ),
+        WHITE,
+    );
+    b.add_detail(
+        [0.0, d / 2.0 + 0.001, zc + r * 0.25],
+        [0.004, 0.001, r * 0.5],
+        BLACK,
+    );
+    b.add_detail(
+        [r * 0.18, d / 2.0 + 0.0012, zc],
+        [r * 0.36, 0.001, 0.004],
+        BLACK,
+    );
     for sx in [-1.0, 1.0] {
-        b.add_box([sx * r * 0.6, 0.0, (zc - r * 0.8).max(0.004) / 2.0], [0.01, d * 0.6, (zc - r * 0.8).max(0.004)], BLACK)?;
+        b.add_box(
+            [sx * r * 0.6, 0.0, (zc - r * 0.8).max(0.004) / 2.0],
+            [0.01, d * 0.6, (zc - r * 0.8).max(0.004)],
+            BLACK,
+        )?;
     }
     single(b.finish()?, vec![])
 }
@@ -144,17 +240,33 @@ fn book(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     if ctx.variant == "magazine" {
         b.add_box([0.0, 0.0, h / 2.0], [t, d, h], [0.95, 0.94, 0.9])?;
         b.add_detail([0.0, 0.0, h + 0.0003], [t * 0.98, d * 0.98, 0.0006], cover);
-        b.add_detail([0.0, d * 0.3, h + 0.0007], [t * 0.8, d * 0.15, 0.0004], shade(cover, 0.4));
+        b.add_detail(
+            [0.0, d * 0.3, h + 0.0007],
+            [t * 0.8, d * 0.15, 0.0004],
+            shade(cover, 0.4),
+        );
         return single(b.finish()?, vec![]);
     }
     // One collision box for the whole book; visuals show covers and a page block.
     b.add_collision(ConvexPiece::cuboid([0.0, 0.0, h / 2.0], [t, d, h])?);
     let c = 0.0025_f64.min(t * 0.2);
-    b.add_visual(mesh::box_mesh([-(t - c) / 2.0, 0.0, h / 2.0], [c, d, h]), cover);
-    b.add_visual(mesh::box_mesh([(t - c) / 2.0, 0.0, h / 2.0], [c, d, h]), cover);
-    b.add_visual(mesh::box_mesh([0.0, d / 2.0 - c / 2.0, h / 2.0], [t - 2.0 * c, c, h]), shade(cover, 0.8));
     b.add_visual(
-        mesh::box_mesh([0.0, -c / 2.0, h / 2.0], [t - 2.0 * c, d - c - 0.004, h - 0.006]),
+        mesh::box_mesh([-(t - c) / 2.0, 0.0, h / 2.0], [c, d, h]),
+        cover,
+    );
+    b.add_visual(
+        mesh::box_mesh([(t - c) / 2.0, 0.0, h / 2.0], [c, d, h]),
+        cover,
+    );
+    b.add_visual(
+        mesh::box_mesh([0.0, d / 2.0 - c / 2.0, h / 2.0], [t - 2.0 * c, c, h]),
+        shade(cover, 0.8),
+    );
+    b.add_visual(
+        mesh::box_mesh(
+            [0.0, -c / 2.0, h / 2.0],
+            [t - 2.0 * c, d - c - 0.004, h - 0.006],
+        ),
         [0.95, 0.93, 0.86],
     );
     single(b.finish()?, vec![])
@@ -170,21 +282,44 @@ fn box_(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     b.shell(None);
     match ctx.variant {
         "gift" => {
-            b.add_detail([0.0, 0.0, h / 2.0], [w * 0.12, d + 0.002, h + 0.002], ctx.palette(0));
-            b.add_detail([0.0, 0.0, h / 2.0], [w + 0.002, d * 0.12, h + 0.002], ctx.palette(0));
+            b.add_detail(
+                [0.0, 0.0, h / 2.0],
+                [w * 0.12, d + 0.002, h + 0.002],
+                ctx.palette(0),
+            );
+            b.add_detail(
+                [0.0, 0.0, h / 2.0],
+                [w + 0.002, d * 0.12, h + 0.002],
+                ctx.palette(0),
+            );
         }
         "package" => {
-            b.add_detail([0.0, d / 2.0 + 0.0005, h * 0.6], [w * 0.8, 0.001, h * 0.35], ctx.palette(2));
-            b.add_detail([0.0, d / 2.0 + 0.0008, h * 0.25], [w * 0.5, 0.001, h * 0.12], WHITE);
+            b.add_detail(
+                [0.0, d / 2.0 + 0.0005, h * 0.6],
+                [w * 0.8, 0.001, h * 0.35],
+                ctx.palette(2),
+            );
+            b.add_detail(
+                [0.0, d / 2.0 + 0.0008, h * 0.25],
+                [w * 0.5, 0.001, h * 0.12],
+                WHITE,
+            );
         }
         "pill" => {
             b.add_detail([0.0, 0.0, h + 0.0005], [w * 0.8, d * 0.8, 0.001], WHITE);
         }
         _ => {
-            b.add_detail([0.0, 0.0, h + 0.0005], [w + 0.001, 0.05_f64.min(d * 0.3), 0.001], [0.75, 0.62, 0.4]);
+            b.add_detail(
+                [0.0, 0.0, h + 0.0005],
+                [w + 0.001, 0.05_f64.min(d * 0.3), 0.001],
+                [0.75, 0.62, 0.4],
+            );
         }
     }
-    single(b.finish()?, vec![surface("top", "body", [0.0, 0.0, h], [w, d], 0.3)])
+    single(
+        b.finish()?,
+        vec![surface("top", "body", [0.0, 0.0, h], [w, d], 0.3)],
+    )
 }
 
 /// Baskets: an open woven vessel with a carrying handle (`shopping` is a rectangular plastic
@@ -204,38 +339,89 @@ fn basket(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     for k in 1..4 {
         let z = rim_h * k as f64 / 4.0;
         let rr = r * (0.75 + 0.25 * k as f64 / 4.0) + 0.001;
-        b.add_visual(shapes::solid_lathe_mesh(&[(rr, z - 0.004), (rr, z + 0.004)], 24).scaled([sx, 1.0, 1.0]), shade(ctx.color, 0.75));
+        b.add_visual(
+            shapes::solid_lathe_mesh(&[(rr, z - 0.004), (rr, z + 0.004)], 24)
+                .scaled([sx, 1.0, 1.0]),
+            shade(ctx.color, 0.75),
+        );
     }
     if ctx.variant != "fruit" {
         let n = 6;
         let pts: Vec<[f64; 3]> = (0..=n)
             .map(|i| {
                 let a = std::f64::consts::PI * i as f64 / n as f64;
-                [r * sx * 0.95 * a.cos(), 0.0, rim_h + (h - rim_h - 0.007) * a.sin()]
+                [
+                    r * sx * 0.95 * a.cos(),
+                    0.0,
+                    rim_h + (h - rim_h - 0.007) * a.sin(),
+                ]
             })
             .collect();
         b.add_tube(&pts, 0.007, shade(ctx.color, 0.8))?;
     }
-    single(b.finish()?, vec![surface("inside", "body", [0.0, 0.0, 0.01], [r * 1.2 * sx, r * 1.2], rim_h)])
+    single(
+        b.finish()?,
+        vec![surface(
+            "inside",
+            "body",
+            [0.0, 0.0, 0.01],
+            [r * 1.2 * sx, r * 1.2],
+            rim_h,
+        )],
+    )
 }
 
 /// An open rectangular box: floor and four walls `t` thick; with `handles`, two handles.
-fn open_box(ctx: &GenContext, mut b: crate::assets::LinkBuilder, w: f64, d: f64, h: f64, t: f64, handles: bool) -> Result<Generated, GeometryError> {
+fn open_box(
+    ctx: &GenContext,
+    mut b: crate::assets::LinkBuilder,
+    w: f64,
+    d: f64,
+    h: f64,
+    t: f64,
+    handles: bool,
+) -> Result<Generated, GeometryError> {
     let wall_h = if handles { h * 0.75 } else { h };
     b.add_box([0.0, 0.0, t / 2.0], [w, d, t], ctx.color)?;
     for sy in [-1.0, 1.0] {
-        b.add_box([0.0, sy * (d / 2.0 - t / 2.0), wall_h / 2.0 + t / 2.0], [w, t, wall_h - t], ctx.color)?;
+        b.add_box(
+            [0.0, sy * (d / 2.0 - t / 2.0), wall_h / 2.0 + t / 2.0],
+            [w, t, wall_h - t],
+            ctx.color,
+        )?;
     }
     for sx in [-1.0, 1.0] {
-        b.add_box([sx * (w / 2.0 - t / 2.0), 0.0, wall_h / 2.0 + t / 2.0], [t, d - 2.0 * t, wall_h - t], shade(ctx.color, 0.92))?;
+        b.add_box(
+            [sx * (w / 2.0 - t / 2.0), 0.0, wall_h / 2.0 + t / 2.0],
+            [t, d - 2.0 * t, wall_h - t],
+            shade(ctx.color, 0.92),
+        )?;
     }
     if handles {
         for sx in [-1.0, 1.0] {
             let x = sx * w * 0.3;
-            b.add_tube(&[[x, -d / 2.0 + t, wall_h], [x, -d / 4.0, h - 0.01], [x, d / 4.0, h - 0.01], [x, d / 2.0 - t, wall_h]], 0.005, BLACK)?;
+            b.add_tube(
+                &[
+                    [x, -d / 2.0 + t, wall_h],
+                    [x, -d / 4.0, h - 0.01],
+                    [x, d / 4.0, h - 0.01],
+                    [x, d / 2.0 - t, wall_h],
+                ],
+                0.005,
+                BLACK,
+            )?;
         }
     }
-    single(b.finish()?, vec![surface("inside", "body", [0.0, 0.0, t], [w - 2.0 * t, d - 2.0 * t], wall_h - t)])
+    single(
+        b.finish()?,
+        vec![surface(
+            "inside",
+            "body",
+            [0.0, 0.0, t],
+            [w - 2.0 * t, d - 2.0 * t],
+            wall_h - t,
+        )],
+    )
 }
 
 /// Storage / toy bin: an open rectangular box (`round` is a round tub).
@@ -247,7 +433,16 @@ fn bin(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         let mut b = b;
         let r = w.min(d) / 2.0;
         b.add_vessel([0.0; 3], &[(r * 0.9, 0.0), (r, h)], t, t, 12, ctx.color)?;
-        return single(b.finish()?, vec![surface("inside", "body", [0.0, 0.0, t], [r * 1.2, r * 1.2], h - t)]);
+        return single(
+            b.finish()?,
+            vec![surface(
+                "inside",
+                "body",
+                [0.0, 0.0, t],
+                [r * 1.2, r * 1.2],
+                h - t,
+            )],
+        );
     }
     open_box(ctx, b, w, d, h, t, false)
 }
@@ -259,9 +454,23 @@ fn towel(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let layers = 3;
     let lh = h / layers as f64;
     for i in 0..layers {
-        b.add_rounded_box([0.0, 0.0, lh * (i as f64 + 0.5)], [w, d, lh], lh * 0.45, shade(ctx.color, 0.95 + 0.05 * (i % 2) as f64))?;
+        b.add_rounded_box(
+            [0.0, 0.0, lh * (i as f64 + 0.5)],
+            [w, d, lh],
+            lh * 0.45,
+            shade(ctx.color, 0.95 + 0.05 * (i % 2) as f64),
+        )?;
     }
-    single(b.finish()?, vec![surface("top", "body", [0.0, 0.0, h], [w * 0.9, d * 0.9], 0.3)])
+    single(
+        b.finish()?,
+        vec![surface(
+            "top",
+            "body",
+            [0.0, 0.0, h],
+            [w * 0.9, d * 0.9],
+            0.3,
+        )],
+    )
 }
 
 /// Pillow / cushion: a puffy rounded slab.
@@ -269,7 +478,11 @@ fn pillow(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
     let mut b = body(ctx);
     b.add_rounded_box([0.0, 0.0, h / 2.0], [w, d, h], h * 0.45, ctx.color)?;
-    b.add_ellipsoid([0.0, 0.0, h / 2.0], [w * 0.42, d * 0.42, h / 2.0], ctx.color)?;
+    b.add_ellipsoid(
+        [0.0, 0.0, h / 2.0],
+        [w * 0.42, d * 0.42, h / 2.0],
+        ctx.color,
+    )?;
     single(b.finish()?, vec![])
 }
 
@@ -282,10 +495,21 @@ fn board_game(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     b.shell(None);
     for k in 0..4 {
         let x = -w * 0.3 + k as f64 * w * 0.2;
-        b.add_detail([x, d * 0.1, h + 0.0005], [w * 0.15, d * 0.3, 0.001], ctx.palette(k + 1));
+        b.add_detail(
+            [x, d * 0.1, h + 0.0005],
+            [w * 0.15, d * 0.3, 0.001],
+            ctx.palette(k + 1),
+        );
     }
-    b.add_detail([0.0, -d * 0.3, h + 0.0005], [w * 0.7, d * 0.15, 0.001], WHITE);
-    single(b.finish()?, vec![surface("top", "body", [0.0, 0.0, h], [w, d], 0.3)])
+    b.add_detail(
+        [0.0, -d * 0.3, h + 0.0005],
+        [w * 0.7, d * 0.15, 0.001],
+        WHITE,
+    );
+    single(
+        b.finish()?,
+        vec![surface("top", "body", [0.0, 0.0, h], [w, d], 0.3)],
+    )
 }
 
 /// Stuffed animal: a sitting teddy bear (body, head, ears, snout, arms, legs); the `dinosaur`
@@ -297,28 +521,79 @@ fn stuffed_animal(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let c = ctx.color;
     if ctx.variant == "dinosaur" {
         b.add_ellipsoid([0.0, 0.0, h * 0.32], [w * 0.45, d * 0.3, h * 0.3], c)?;
-        b.add_frustum([0.0, d * 0.1, h * 0.4], [0.0, d * 0.3, h * 0.82], w * 0.18, w * 0.12, c)?;
+        b.add_frustum(
+            [0.0, d * 0.1, h * 0.4],
+            [0.0, d * 0.3, h * 0.82],
+            w * 0.18,
+            w * 0.12,
+            c,
+        )?;
         b.add_ellipsoid([0.0, d * 0.34, h * 0.88], [w * 0.16, d * 0.16, h * 0.12], c)?;
-        b.add_frustum([0.0, -d * 0.2, h * 0.25], [0.0, -d / 2.0 + 0.012, h * 0.06], w * 0.2, 0.01, c)?;
+        b.add_frustum(
+            [0.0, -d * 0.2, h * 0.25],
+            [0.0, -d / 2.0 + 0.012, h * 0.06],
+            w * 0.2,
+            0.01,
+            c,
+        )?;
         for (x, y) in [(-1.0, 1.0), (1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)] {
             let lr = w * 0.1;
-            b.add_leg([x * (w / 2.0 - lr), y * d * 0.12, h * 0.2], [x * (w / 2.0 - lr), y * d * 0.14], lr, shade(c, 0.9))?;
+            b.add_leg(
+                [x * (w / 2.0 - lr), y * d * 0.12, h * 0.2],
+                [x * (w / 2.0 - lr), y * d * 0.14],
+                lr,
+                shade(c, 0.9),
+            )?;
         }
         return single(b.finish()?, vec![]);
     }
     let body_h = h * 0.55;
-    b.add_ellipsoid([0.0, -d * 0.15, body_h * 0.5], [w * 0.32, d * 0.35, body_h * 0.5], c)?;
+    b.add_ellipsoid(
+        [0.0, -d * 0.15, body_h * 0.5],
+        [w * 0.32, d * 0.35, body_h * 0.5],
+        c,
+    )?;
     let head_r = h * 0.2;
     let head_z = h - head_r - 0.01;
     b.add_ellipsoid([0.0, 0.0, head_z], [head_r, head_r * 0.9, head_r], c)?;
-    b.add_ellipsoid([0.0, head_r * 0.8, head_z - head_r * 0.25], [head_r * 0.4, head_r * 0.3, head_r * 0.3], shade(c, 1.3))?;
+    b.add_ellipsoid(
+        [0.0, head_r * 0.8, head_z - head_r * 0.25],
+        [head_r * 0.4, head_r * 0.3, head_r * 0.3],
+        shade(c, 1.3),
+    )?;
     for sx in [-1.0, 1.0] {
-        b.add_ellipsoid([sx * head_r * 0.75, 0.0, head_z + head_r * 0.75], [head_r * 0.3, head_r * 0.15, head_r * 0.3], c)?;
-        b.add_ellipsoid([sx * w * 0.36, d * 0.1, body_h * 0.55], [w * 0.12, d * 0.12, body_h * 0.28], c)?;
-        b.add_ellipsoid([sx * w * 0.18, d * 0.3, body_h * 0.15], [w * 0.12, d * 0.2, body_h * 0.15], c)?;
-        b.add_visual(shapes::ellipsoid_mesh([sx * head_r * 0.35, head_r * 0.82, head_z + head_r * 0.2], [0.008, 0.006, 0.008], 8), BLACK);
+        b.add_ellipsoid(
+            [sx * head_r * 0.75, 0.0, head_z + head_r * 0.75],
+            [head_r * 0.3, head_r * 0.15, head_r * 0.3],
+            c,
+        )?;
+        b.add_ellipsoid(
+            [sx * w * 0.36, d * 0.1, body_h * 0.55],
+            [w * 0.12, d * 0.12, body_h * 0.28],
+            c,
+        )?;
+        b.add_ellipsoid(
+            [sx * w * 0.18, d * 0.3, body_h * 0.15],
+            [w * 0.12, d * 0.2, body_h * 0.15],
+            c,
+        )?;
+        b.add_visual(
+            shapes::ellipsoid_mesh(
+                [sx * head_r * 0.35, head_r * 0.82, head_z + head_r * 0.2],
+                [0.008, 0.006, 0.008],
+                8,
+            ),
+            BLACK,
+        );
     }
-    b.add_visual(shapes::ellipsoid_mesh([0.0, head_r * 1.08, head_z - head_r * 0.2], [0.01, 0.006, 0.008], 8), BLACK);
+    b.add_visual(
+        shapes::ellipsoid_mesh(
+            [0.0, head_r * 1.08, head_z - head_r * 0.2],
+            [0.01, 0.006, 0.008],
+            8,
+        ),
+        BLACK,
+    );
     single(b.finish()?, vec![])
 }
 
@@ -331,9 +606,18 @@ fn toy_block(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
             let k = ctx.uniform(0.0, 5.0) as usize;
             ctx.palette(k)
         }
-        None => [[0.8, 0.1, 0.1], [0.1, 0.3, 0.8], [0.95, 0.8, 0.1], [0.1, 0.6, 0.2]][ctx.uniform(0.0, 4.0) as usize % 4],
+        None => [
+            [0.8, 0.1, 0.1],
+            [0.1, 0.3, 0.8],
+            [0.95, 0.8, 0.1],
+            [0.1, 0.6, 0.2],
+        ][ctx.uniform(0.0, 4.0) as usize % 4],
     };
-    let color = if ctx.variant == "wooden" { ctx.color } else { color };
+    let color = if ctx.variant == "wooden" {
+        ctx.color
+    } else {
+        color
+    };
     if ctx.variant == "brick" {
         let stud = h * 0.18;
         b.add_box([0.0, 0.0, (h - stud) / 2.0], [w, d, h - stud], color)?;
@@ -343,14 +627,24 @@ fn toy_block(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
             for j in 0..ny {
                 let x = -w / 2.0 + (i as f64 + 0.5) * w / nx as f64;
                 let y = -d / 2.0 + (j as f64 + 0.5) * d / ny as f64;
-                b.add_visual(mesh::cylinder_mesh(x, y, w / nx as f64 * 0.3, h - stud, h, 12), color);
+                b.add_visual(
+                    mesh::cylinder_mesh(x, y, w / nx as f64 * 0.3, h - stud, h, 12),
+                    color,
+                );
             }
         }
         return single(b.finish()?, vec![]);
     }
     b.add_box([0.0, 0.0, h / 2.0], [w, d, h], color)?;
-    b.add_detail([0.0, d / 2.0 + 0.0005, h / 2.0], [w * 0.5, 0.001, h * 0.5], shade(color, 0.5));
-    single(b.finish()?, vec![surface("top", "body", [0.0, 0.0, h], [w, d], 0.3)])
+    b.add_detail(
+        [0.0, d / 2.0 + 0.0005, h / 2.0],
+        [w * 0.5, 0.001, h * 0.5],
+        shade(color, 0.5),
+    );
+    single(
+        b.finish()?,
+        vec![surface("top", "body", [0.0, 0.0, h], [w, d], 0.3)],
+    )
 }
 
 /// Ball: a sphere with seams (`basketball`, `soccer`, `exercise` variants colour it).
@@ -361,7 +655,16 @@ fn ball(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     b.shell(Some((r * 0.05).max(0.002)));
     b.add_ellipsoid([0.0, 0.0, r], [r, r, r], ctx.color)?;
     b.shell(None);
-    b.add_visual(shapes::frustum_mesh([0.0, 0.0, r - 0.002], [0.0, 0.0, r + 0.002], r * 1.003, r * 1.003, 32), shade(ctx.color, 0.5));
+    b.add_visual(
+        shapes::frustum_mesh(
+            [0.0, 0.0, r - 0.002],
+            [0.0, 0.0, r + 0.002],
+            r * 1.003,
+            r * 1.003,
+            32,
+        ),
+        shade(ctx.color, 0.5),
+    );
     single(b.finish()?, vec![])
 }
 
@@ -380,14 +683,46 @@ fn toy_vehicle(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let base = wr * 0.8;
     let bd = d * 0.7;
     if ctx.variant == "train" {
-        b.add_box([-w * 0.1, 0.0, base + (h * 0.35) / 2.0], [w * 0.8, bd, h * 0.35], ctx.color)?;
-        b.add_rod([w * 0.05, 0.0, base + h * 0.35 / 2.0], [w / 2.0 - 0.005, 0.0, base + h * 0.35 / 2.0], h * 0.17, ctx.color)?;
-        b.add_box([-w / 2.0 + w * 0.15, 0.0, (base + h * 0.35 + h) / 2.0], [w * 0.3, bd, h - base - h * 0.35], shade(ctx.color, 0.8))?;
-        b.add_rod([w * 0.3, 0.0, base + h * 0.4], [w * 0.3, 0.0, h * 0.85], h * 0.06, BLACK)?;
+        b.add_box(
+            [-w * 0.1, 0.0, base + (h * 0.35) / 2.0],
+            [w * 0.8, bd, h * 0.35],
+            ctx.color,
+        )?;
+        b.add_rod(
+            [w * 0.05, 0.0, base + h * 0.35 / 2.0],
+            [w / 2.0 - 0.005, 0.0, base + h * 0.35 / 2.0],
+            h * 0.17,
+            ctx.color,
+        )?;
+        b.add_box(
+            [-w / 2.0 + w * 0.15, 0.0, (base + h * 0.35 + h) / 2.0],
+            [w * 0.3, bd, h - base - h * 0.35],
+            shade(ctx.color, 0.8),
+        )?;
+        b.add_rod(
+            [w * 0.3, 0.0, base + h * 0.4],
+            [w * 0.3, 0.0, h * 0.85],
+            h * 0.06,
+            BLACK,
+        )?;
     } else {
-        b.add_rounded_box([0.0, 0.0, base + h * 0.2], [w, bd, h * 0.4], 0.01_f64.min(h * 0.1), ctx.color)?;
-        b.add_rounded_box([-w * 0.05, 0.0, base + h * 0.4 + (h - base - h * 0.4) / 2.0], [w * 0.5, bd * 0.9, h - base - h * 0.4], 0.01_f64.min(h * 0.1), shade(ctx.color, 0.9))?;
-        b.add_detail([-w * 0.05, 0.0, h - 0.001], [w * 0.4, bd * 0.8, 0.002], [0.6, 0.75, 0.85]);
+        b.add_rounded_box(
+            [0.0, 0.0, base + h * 0.2],
+            [w, bd, h * 0.4],
+            0.01_f64.min(h * 0.1),
+            ctx.color,
+        )?;
+        b.add_rounded_box(
+            [-w * 0.05, 0.0, base + h * 0.4 + (h - base - h * 0.4) / 2.0],
+            [w * 0.5, bd * 0.9, h - base - h * 0.4],
+            0.01_f64.min(h * 0.1),
+            shade(ctx.color, 0.9),
+        )?;
+        b.add_detail(
+            [-w * 0.05, 0.0, h - 0.001],
+            [w * 0.4, bd * 0.8, 0.002],
+            [0.6, 0.75, 0.85],
+        );
     }
     single(b.finish()?, vec![])
 }
@@ -403,12 +738,24 @@ fn dumbbell(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     for sx in [-1.0, 1.0] {
         let x0 = sx * (w / 2.0 - head);
         let ring: Vec<[f64; 2]> = mesh::circle_ring(0.0, 0.0, r, 6);
-        let pts: Vec<[f64; 3]> = ring.iter().flat_map(|p| [[x0, p[0], zc + p[1]], [sx * w / 2.0, p[0], zc + p[1]]]).collect();
+        let pts: Vec<[f64; 3]> = ring
+            .iter()
+            .flat_map(|p| [[x0, p[0], zc + p[1]], [sx * w / 2.0, p[0], zc + p[1]]])
+            .collect();
         let piece = ConvexPiece::from_points(&pts)?;
-        let m = shapes::yz_prism_mesh(&ring.iter().map(|p| [p[0], zc + p[1]]).collect::<Vec<_>>(), x0.min(sx * w / 2.0), x0.max(sx * w / 2.0));
+        let m = shapes::yz_prism_mesh(
+            &ring.iter().map(|p| [p[0], zc + p[1]]).collect::<Vec<_>>(),
+            x0.min(sx * w / 2.0),
+            x0.max(sx * w / 2.0),
+        );
         b.add_part(m, piece, BLACK);
     }
-    b.add_rod([-w / 2.0 + head, 0.0, zc], [w / 2.0 - head, 0.0, zc], r * 0.3, METAL)?;
+    b.add_rod(
+        [-w / 2.0 + head, 0.0, zc],
+        [w / 2.0 - head, 0.0, zc],
+        r * 0.3,
+        METAL,
+    )?;
     single(b.finish()?, vec![])
 }
 
@@ -422,7 +769,10 @@ fn weight_plate(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     for p in crate::geometry::convex::revolved_pieces(&profile, 12)? {
         b.add_collision(p);
     }
-    b.add_visual(mesh::lathe_mesh(&[(hole, 0.0), (r, 0.0), (r, h), (hole, h), (hole, 0.0)], 40), ctx.color);
+    b.add_visual(
+        mesh::lathe_mesh(&[(hole, 0.0), (r, 0.0), (r, h), (hole, h), (hole, 0.0)], 40),
+        ctx.color,
+    );
     single(b.finish()?, vec![])
 }
 
@@ -432,8 +782,17 @@ fn shoe(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let mut b = body(ctx);
     let sole = 0.02_f64.min(h * 0.25);
     b.add_rounded_box([0.0, 0.0, sole / 2.0], [w, d, sole], sole * 0.45, WHITE)?;
-    b.add_ellipsoid([0.0, d * 0.12, sole + (h - sole) * 0.35], [w / 2.0 * 0.95, d * 0.38, (h - sole) * 0.35], ctx.color)?;
-    b.add_rounded_box([0.0, -d * 0.25, sole + (h - sole) / 2.0], [w * 0.95, d * 0.45, h - sole], 0.02, ctx.color)?;
+    b.add_ellipsoid(
+        [0.0, d * 0.12, sole + (h - sole) * 0.35],
+        [w / 2.0 * 0.95, d * 0.38, (h - sole) * 0.35],
+        ctx.color,
+    )?;
+    b.add_rounded_box(
+        [0.0, -d * 0.25, sole + (h - sole) / 2.0],
+        [w * 0.95, d * 0.45, h - sole],
+        0.02,
+        ctx.color,
+    )?;
     single(b.finish()?, vec![])
 }
 
@@ -442,14 +801,32 @@ fn globe(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
     let mut b = body(ctx);
     let r = (w.min(d) / 2.0).min((h - 0.06) / 2.0);
-    b.add_frustum([0.0, 0.0, 0.0], [0.0, 0.0, 0.02], r * 0.6, r * 0.5, ctx.accent_color)?;
-    b.add_rod([0.0, 0.0, 0.02], [0.0, 0.0, h - 2.0 * r], 0.008, ctx.accent_color)?;
+    b.add_frustum(
+        [0.0, 0.0, 0.0],
+        [0.0, 0.0, 0.02],
+        r * 0.6,
+        r * 0.5,
+        ctx.accent_color,
+    )?;
+    b.add_rod(
+        [0.0, 0.0, 0.02],
+        [0.0, 0.0, h - 2.0 * r],
+        0.008,
+        ctx.accent_color,
+    )?;
     b.shell(Some(0.003));
     b.add_ellipsoid([0.0, 0.0, h - r], [r, r, r], [0.15, 0.35, 0.7])?;
     b.shell(None);
-    for (x, y, z, s) in [(0.5, 0.5, 0.2, 0.35), (-0.6, 0.3, -0.2, 0.3), (0.1, -0.7, 0.4, 0.3)] {
+    for (x, y, z, s) in [
+        (0.5, 0.5, 0.2, 0.35),
+        (-0.6, 0.3, -0.2, 0.3),
+        (0.1, -0.7, 0.4, 0.3),
+    ] {
         let v = Vector3::new(x, y, z).normalize() * (r * 0.93);
-        b.add_visual(shapes::ellipsoid_mesh([v.x, v.y, h - r + v.z], [r * s, r * s, r * s * 0.8], 12), [0.25, 0.55, 0.2]);
+        b.add_visual(
+            shapes::ellipsoid_mesh([v.x, v.y, h - r + v.z], [r * s, r * s, r * s * 0.8], 12),
+            [0.25, 0.55, 0.2],
+        );
     }
     single(b.finish()?, vec![])
 }
@@ -460,10 +837,32 @@ fn trophy(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let mut b = body(ctx);
     let r = d / 2.0;
     b.add_box([0.0, 0.0, h * 0.06], [w * 0.7, d, h * 0.12], BLACK)?;
-    b.add_solid_lathe(&[(r * 0.2, h * 0.12), (r * 0.12, h * 0.35), (r * 0.25, h * 0.45)], ctx.color)?;
-    b.add_vessel([0.0, 0.0, h * 0.45], &[(r * 0.3, 0.0), (r * 0.8, h * 0.3), (r * 0.85, h * 0.55)], 0.003, 0.005, 8, ctx.color)?;
+    b.add_solid_lathe(
+        &[
+            (r * 0.2, h * 0.12),
+            (r * 0.12, h * 0.35),
+            (r * 0.25, h * 0.45),
+        ],
+        ctx.color,
+    )?;
+    b.add_vessel(
+        [0.0, 0.0, h * 0.45],
+        &[(r * 0.3, 0.0), (r * 0.8, h * 0.3), (r * 0.85, h * 0.55)],
+        0.003,
+        0.005,
+        8,
+        ctx.color,
+    )?;
     for sx in [-1.0, 1.0] {
-        b.add_tube(&[[sx * r * 0.8, 0.0, h * 0.9], [sx * (w / 2.0 - 0.005), 0.0, h * 0.85], [sx * r * 0.7, 0.0, h * 0.65]], 0.005, ctx.color)?;
+        b.add_tube(
+            &[
+                [sx * r * 0.8, 0.0, h * 0.9],
+                [sx * (w / 2.0 - 0.005), 0.0, h * 0.85],
+                [sx * r * 0.7, 0.0, h * 0.65],
+            ],
+            0.005,
+            ctx.color,
+        )?;
     }
     single(b.finish()?, vec![])
 }
@@ -473,21 +872,129 @@ fn statuette(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
     let mut b = body(ctx);
     let plinth = h * 0.1;
-    b.add_box([0.0, 0.0, plinth / 2.0], [w, d, plinth], shade(ctx.color, 0.7))?;
+    b.add_box(
+        [0.0, 0.0, plinth / 2.0],
+        [w, d, plinth],
+        shade(ctx.color, 0.7),
+    )?;
     if ctx.variant == "abstract" {
-        b.add_ellipsoid([0.0, 0.0, plinth + (h - plinth) * 0.3], [w * 0.4, d * 0.3, (h - plinth) * 0.3], ctx.color)?;
-        b.add_ellipsoid([w * 0.1, 0.0, plinth + (h - plinth) * 0.75], [w * 0.2, d * 0.25, (h - plinth) * 0.25], ctx.color)?;
+        b.add_ellipsoid(
+            [0.0, 0.0, plinth + (h - plinth) * 0.3],
+            [w * 0.4, d * 0.3, (h - plinth) * 0.3],
+            ctx.color,
+        )?;
+        b.add_ellipsoid(
+            [w * 0.1, 0.0, plinth + (h - plinth) * 0.75],
+            [w * 0.2, d * 0.25, (h - plinth) * 0.25],
+            ctx.color,
+        )?;
         return single(b.finish()?, vec![]);
     }
     let fh = h - plinth;
     let c = ctx.color;
     for sx in [-1.0, 1.0] {
-        b.add_frustum([sx * w * 0.1, 0.0, plinth], [sx * w * 0.09, 0.0, plinth + fh * 0.45], w * 0.07, w * 0.09, c)?;
+        b.add_frustum(
+            [sx * w * 0.1, 0.0, plinth],
+            [sx * w * 0.09, 0.0, plinth + fh * 0.45],
+            w * 0.07,
+            w * 0.09,
+            c,
+        )?;
     }
-    b.add_frustum([0.0, 0.0, plinth + fh * 0.45], [0.0, 0.0, plinth + fh * 0.8], w * 0.2, w * 0.25, c)?;
-    b.add_ellipsoid([0.0, 0.0, plinth + fh * 0.89], [w * 0.1, d * 0.12, fh * 0.09], c)?;
+    b.add_frustum(
+        [0.0, 0.0, plinth + fh * 0.45],
+        [0.0, 0.0, plinth + fh * 0.8],
+        w * 0.2,
+        w * 0.25,
+        c,
+    )?;
+    b.add_ellipsoid(
+        [0.0, 0.0, plinth + fh * 0.89],
+        [w * 0.1, d * 0.12, fh * 0.09],
+        c,
+    )?;
     for sx in [-1.0, 1.0] {
-        b.add_frustum([sx * w * 0.27, 0.0, plinth + fh * 0.78], [sx * w * 0.33, 0.0, plinth + fh * 0.45], w * 0.06, w * 0.05, c)?;
+        b.add_frustum(
+            [sx * w * 0.27, 0.0, plinth + fh * 0.78],
+            [sx * w * 0.33, 0.0, plinth + fh * 0.45],
+            w * 0.06,
+            w * 0.05,
+            c,
+        )?;
+    }
+    single(b.finish()?, vec![])
+}
+
+/// Writing tools lying along x: `""` pen (body, clip, cap), `pencil` (hexagonal, sharpened
+/// tip), `marker` (fat body, coloured cap).
+fn pen(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
+    let [w, d, h] = ctx.size;
+    let mut b = body(ctx);
+    let r = d.min(h) / 2.0;
+    let tip = w * 0.12;
+    match ctx.variant {
+        "pencil" => {
+            let ring: Vec<[f64; 2]> = mesh::circle_ring(0.0, r, r, 6);
+            let x0 = -w / 2.0;
+            let x1 = w / 2.0 - tip;
+            b.add_part(
+                shapes::yz_prism_mesh(&ring, x0, x1),
+                shapes::yz_prism_piece(&ring, x0, x1)?,
+                ctx.color,
+            );
+            b.add_frustum(
+                [x1, 0.0, r],
+                [w / 2.0, 0.0, r],
+                r * 0.85,
+                r * 0.1,
+                [0.85, 0.7, 0.5],
+            )?;
+            b.add_visual(
+                shapes::frustum_mesh(
+                    [w / 2.0 - tip * 0.3, 0.0, r],
+                    [w / 2.0, 0.0, r],
+                    r * 0.3,
+                    r * 0.05,
+                    8,
+                ),
+                BLACK,
+            );
+            b.add_visual(
+                shapes::frustum_mesh(
+                    [x0 - 0.0005, 0.0, r],
+                    [x0 + w * 0.06, 0.0, r],
+                    r * 1.01,
+                    r * 1.01,
+                    12,
+                ),
+                [0.9, 0.5, 0.55],
+            );
+        }
+        _ => {
+            let cap = if ctx.variant == "marker" {
+                w * 0.3
+            } else {
+                w * 0.25
+            };
+            b.add_rod(
+                [-w / 2.0 + cap, 0.0, r],
+                [w / 2.0 - tip, 0.0, r],
+                r * 0.92,
+                if ctx.variant == "marker" {
+                    WHITE
+                } else {
+                    ctx.color
+                },
+            )?;
+            b.add_frustum(
+                [w / 2.0 - tip, 0.0, r],
+                [w / 2.0, 0.0, r],
+                r * 0.8,
+                r * 0.25,
+                METAL,
+            )?;
+            b.add_rod([-w / 2.0, 0.0, r], [-w / 2.0 + cap, 0.0, r], r, ctx.color)?;
+        }
     }
     single(b.finish()?, vec![])
 }

@@ -44,7 +44,11 @@ fn generic(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         "wall" => {
             let f = (w.min(h) * 0.08).max(0.015);
             b.add_box([0.0, d / 2.0, h / 2.0], [w, d, h], shade(c, 0.7))?;
-            b.add_detail([0.0, d + 0.0005, h / 2.0], [w - 2.0 * f, 0.001, h - 2.0 * f], c);
+            b.add_detail(
+                [0.0, d + 0.0005, h / 2.0],
+                [w - 2.0 * f, 0.001, h - 2.0 * f],
+                c,
+            );
         }
         "ceiling" => {
             let r = w.min(d) / 2.0;
@@ -53,8 +57,17 @@ fn generic(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         }
         "floor" => {
             let plinth = (h * 0.06).clamp(0.02, 0.08);
-            b.add_box([0.0, 0.0, plinth / 2.0], [w * 0.92, d * 0.92, plinth], shade(c, 0.6))?;
-            b.add_rounded_box([0.0, 0.0, (plinth + h) / 2.0], [w, d, h - plinth], (w.min(d) * 0.08).min(0.05), c)?;
+            b.add_box(
+                [0.0, 0.0, plinth / 2.0],
+                [w * 0.92, d * 0.92, plinth],
+                shade(c, 0.6),
+            )?;
+            b.add_rounded_box(
+                [0.0, 0.0, (plinth + h) / 2.0],
+                [w, d, h - plinth],
+                (w.min(d) * 0.08).min(0.05),
+                c,
+            )?;
         }
         _ => {
             b.add_rounded_box([0.0, 0.0, h / 2.0], [w, d, h], w.min(d).min(h) * 0.2, c)?;
@@ -74,8 +87,11 @@ pub fn build_generic(
     material_name: Option<&str>,
     color: Option<[f64; 3]>,
 ) -> Result<Asset, AssetError> {
-    let prior = generic_prior(support).ok_or_else(|| AssetError::UnknownCategory(noun.to_string()))?;
-    let size = size.unwrap_or(prior.typical).map(|v| (v * 1e4).round() / 1e4);
+    let prior =
+        generic_prior(support).ok_or_else(|| AssetError::UnknownCategory(noun.to_string()))?;
+    let size = size
+        .unwrap_or(prior.typical)
+        .map(|v| (v * 1e4).round() / 1e4);
     if size.iter().any(|v| !(v.is_finite() && *v > 0.0)) {
         return Err(AssetError::Malformed {
             asset: noun.to_string(),
@@ -110,7 +126,10 @@ pub fn build_generic(
         style: None,
         rng: ChaCha8Rng::seed_from_u64(seed),
     };
-    let generated = generic(&mut ctx).map_err(|source| AssetError::Geometry { asset: id.clone(), source })?;
+    let generated = generic(&mut ctx).map_err(|source| AssetError::Geometry {
+        asset: id.clone(),
+        source,
+    })?;
     let mut asset = Asset {
         id,
         category: category.clone(),
@@ -132,6 +151,7 @@ pub fn build_generic(
         }),
     };
     physical::check(&asset, support)?;
-    asset.provenance["physics"] = serde_json::to_value(physical::summarize(&asset, support)).unwrap_or_default();
+    asset.provenance["physics"] =
+        serde_json::to_value(physical::summarize(&asset, support)).unwrap_or_default();
     Ok(asset)
 }

@@ -51,13 +51,24 @@ fn plate(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     ];
     b.add_visual(mesh::lathe_mesh(&visual_profile, 40), ctx.color);
     b.add_collision(ConvexPiece::cylinder(0.0, 0.0, r_base, 0.0, base_t, 16)?);
-    let rim_profile = [(r_base - 0.002, 0.0), (r_out, h - rim_t), (r_out, h), (r_base - 0.002, base_t)];
+    let rim_profile = [
+        (r_base - 0.002, 0.0),
+        (r_out, h - rim_t),
+        (r_out, h),
+        (r_base - 0.002, base_t),
+    ];
     for piece in crate::geometry::convex::revolved_pieces(&rim_profile, 16)? {
         b.add_collision(piece);
     }
     single(
         b.finish()?,
-        vec![surface("top", "body", [0.0, 0.0, base_t], [r_base * 1.4, r_base * 1.4], 0.3)],
+        vec![surface(
+            "top",
+            "body",
+            [0.0, 0.0, base_t],
+            [r_base * 1.4, r_base * 1.4],
+            0.3,
+        )],
     )
 }
 
@@ -66,12 +77,23 @@ fn bowl(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, _d, h] = ctx.size;
     let r = w / 2.0;
     let mut b = body(ctx);
-    let outer = [(r * 0.45, 0.0), (r * 0.7, h * 0.3), (r * 0.9, h * 0.65), (r, h)];
+    let outer = [
+        (r * 0.45, 0.0),
+        (r * 0.7, h * 0.3),
+        (r * 0.9, h * 0.65),
+        (r, h),
+    ];
     let wall = (r * 0.06).clamp(0.003, 0.008);
     b.add_vessel([0.0; 3], &outer, wall, wall * 1.2, 12, ctx.color)?;
     single(
         b.finish()?,
-        vec![surface("inside", "body", [0.0, 0.0, wall * 1.2], [r * 0.9, r * 0.9], h - wall)],
+        vec![surface(
+            "inside",
+            "body",
+            [0.0, 0.0, wall * 1.2],
+            [r * 0.9, r * 0.9],
+            h - wall,
+        )],
     )
 }
 
@@ -95,12 +117,28 @@ fn mug(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let t = 0.009;
     let grip_x = w / 2.0 - t / 2.0;
     for z in [h * 0.78, h * 0.3] {
-        let x_in = cx + if ctx.variant == "cup" { r * (0.6 + 0.4 * z / h) } else { r } - 0.002;
-        b.add_box([(x_in + grip_x) / 2.0, 0.0, z], [grip_x - x_in + t, t, t], ctx.color)?;
+        let x_in =
+            cx + if ctx.variant == "cup" {
+                r * (0.6 + 0.4 * z / h)
+            } else {
+                r
+            } - 0.002;
+        b.add_box(
+            [(x_in + grip_x) / 2.0, 0.0, z],
+            [grip_x - x_in + t, t, t],
+            ctx.color,
+        )?;
     }
     let grip_h = h * 0.48 - t;
-    b.add_box([grip_x, 0.0, (h * 0.78 + h * 0.3) / 2.0], [t, t, grip_h], ctx.color)?;
-    single(b.finish()?, vec![surface("inside", "body", [cx, 0.0, base], [r, r], h - base)])
+    b.add_box(
+        [grip_x, 0.0, (h * 0.78 + h * 0.3) / 2.0],
+        [t, t, grip_h],
+        ctx.color,
+    )?;
+    single(
+        b.finish()?,
+        vec![surface("inside", "body", [cx, 0.0, base], [r, r], h - base)],
+    )
 }
 
 /// Drinking glass (tumbler): a clear open cylinder, slightly flared.
@@ -113,7 +151,16 @@ fn glass(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         b.add_collision(p);
     }
     b.add_visual_rgba(visual, [0.82, 0.9, 0.95, 0.4]);
-    single(b.finish()?, vec![surface("inside", "body", [0.0, 0.0, 0.008], [r, r], h - 0.008)])
+    single(
+        b.finish()?,
+        vec![surface(
+            "inside",
+            "body",
+            [0.0, 0.0, 0.008],
+            [r, r],
+            h - 0.008,
+        )],
+    )
 }
 
 /// Wine glass: a foot, a stem and a bowl.
@@ -135,13 +182,32 @@ fn wine_glass(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         clear,
     );
     let bh = h - stem_top;
-    let (visual, pieces) = shapes::vessel(&[(r * 0.3, 0.0), (r * 0.95, bh * 0.45), (r, bh * 0.7), (r * 0.85, bh)], 0.002, 0.006, 10)?;
+    let (visual, pieces) = shapes::vessel(
+        &[
+            (r * 0.3, 0.0),
+            (r * 0.95, bh * 0.45),
+            (r, bh * 0.7),
+            (r * 0.85, bh),
+        ],
+        0.002,
+        0.006,
+        10,
+    )?;
     let at = crate::scene::Pose::from_xyz(0.0, 0.0, stem_top);
     for p in pieces {
         b.add_collision(p.transformed(&at));
     }
     b.add_visual_rgba(visual.transformed(&at), clear);
-    single(b.finish()?, vec![surface("inside", "body", [0.0, 0.0, stem_top + 0.006], [r, r], bh)])
+    single(
+        b.finish()?,
+        vec![surface(
+            "inside",
+            "body",
+            [0.0, 0.0, stem_top + 0.006],
+            [r, r],
+            bh,
+        )],
+    )
 }
 
 /// Bottles: `wine` (dark glass, long neck), `water` (clear blue plastic), `beer` (brown),
@@ -153,19 +219,47 @@ fn bottle(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let mut b = body(ctx);
     let (profile, rgba, cap): (Vec<(f64, f64)>, [f64; 4], [f64; 3]) = match ctx.variant {
         "wine" => (
-            vec![(r * 0.95, 0.0), (r, 0.01), (r, h * 0.62), (r * 0.85, h * 0.7), (r * 0.3, h * 0.8), (r * 0.28, h * 0.97), (r * 0.32, h)],
+            vec![
+                (r * 0.95, 0.0),
+                (r, 0.01),
+                (r, h * 0.62),
+                (r * 0.85, h * 0.7),
+                (r * 0.3, h * 0.8),
+                (r * 0.28, h * 0.97),
+                (r * 0.32, h),
+            ],
             [0.05, 0.18, 0.06, 0.9],
             [0.45, 0.05, 0.08],
         ),
         "beer" => (
-            vec![(r, 0.0), (r, h * 0.6), (r * 0.35, h * 0.8), (r * 0.3, h * 0.97), (r * 0.33, h)],
+            vec![
+                (r, 0.0),
+                (r, h * 0.6),
+                (r * 0.35, h * 0.8),
+                (r * 0.3, h * 0.97),
+                (r * 0.33, h),
+            ],
             [0.28, 0.12, 0.03, 0.85],
             [0.8, 0.7, 0.2],
         ),
-        "pill" => (vec![(r, 0.0), (r, h * 0.8), (r * 0.92, h * 0.82)], [0.8, 0.45, 0.1, 0.9], WHITE),
-        "pump" => (vec![(r, 0.0), (r, h * 0.65), (r * 0.5, h * 0.72)], [ctx.color[0], ctx.color[1], ctx.color[2], 1.0], WHITE),
+        "pill" => (
+            vec![(r, 0.0), (r, h * 0.8), (r * 0.92, h * 0.82)],
+            [0.8, 0.45, 0.1, 0.9],
+            WHITE,
+        ),
+        "pump" => (
+            vec![(r, 0.0), (r, h * 0.65), (r * 0.5, h * 0.72)],
+            [ctx.color[0], ctx.color[1], ctx.color[2], 1.0],
+            WHITE,
+        ),
         _ => (
-            vec![(r * 0.92, 0.0), (r, 0.01), (r, h * 0.68), (r * 0.4, h * 0.88), (r * 0.35, h * 0.95)],
+            vec![
+                (r * 0.92, 0.0),
+                (r, 0.01),
+                (r, h * 0.68),
+                (r * 0.4, h * 0.88),
+                (r * 0.35, h * 0.95),
+            ],
             [0.6, 0.8, 0.95, 0.55],
             [0.1, 0.3, 0.8],
         ),
@@ -180,14 +274,22 @@ fn bottle(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     // Cap, or a pump head.
     let cap_r = profile.last().map_or(r * 0.3, |p| p.0) * 1.05;
     if ctx.variant == "pump" {
-        b.add_rod([0.0, 0.0, body_top], [0.0, 0.0, h - 0.02], cap_r * 0.4, WHITE)?;
+        b.add_rod(
+            [0.0, 0.0, body_top],
+            [0.0, 0.0, h - 0.02],
+            cap_r * 0.4,
+            WHITE,
+        )?;
         b.add_box([r * 0.3, 0.0, h - 0.01], [r * 1.2, 0.015, 0.02], WHITE)?;
     } else if body_top < h - 0.002 {
         b.add_rod([0.0, 0.0, body_top], [0.0, 0.0, h], cap_r, cap)?;
     }
     // Label band.
     if matches!(ctx.variant, "wine" | "beer" | "" | "water") {
-        b.add_visual(shapes::solid_lathe_mesh(&[(r + 0.0008, h * 0.2), (r + 0.0008, h * 0.45)], 32), [0.92, 0.88, 0.78]);
+        b.add_visual(
+            shapes::solid_lathe_mesh(&[(r + 0.0008, h * 0.2), (r + 0.0008, h * 0.45)], 32),
+            [0.92, 0.88, 0.78],
+        );
     }
     single(b.finish()?, vec![])
 }
@@ -204,7 +306,10 @@ fn can(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     }
     b.shell(None);
     b.add_visual(shapes::solid_lathe_mesh(&profile, 32), METAL);
-    b.add_visual(shapes::solid_lathe_mesh(&[(r + 0.0006, h * 0.12), (r + 0.0006, h * 0.88)], 32), ctx.color);
+    b.add_visual(
+        shapes::solid_lathe_mesh(&[(r + 0.0006, h * 0.12), (r + 0.0006, h * 0.88)], 32),
+        ctx.color,
+    );
     single(b.finish()?, vec![])
 }
 
@@ -215,17 +320,37 @@ fn jar(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let r = w / 2.0;
     let mut b = body(ctx);
     let lid_h = (h * 0.15).max(0.01);
-    let profile = [(r * 0.95, 0.0), (r, 0.01), (r, h - lid_h - 0.01), (r * 0.9, h - lid_h)];
+    let profile = [
+        (r * 0.95, 0.0),
+        (r, 0.01),
+        (r, h - lid_h - 0.01),
+        (r * 0.9, h - lid_h),
+    ];
     b.shell(Some(0.003));
     for p in shapes::solid_lathe_pieces(&profile, 16)? {
         b.add_collision(p);
     }
     b.shell(None);
-    b.add_visual_rgba(shapes::solid_lathe_mesh(&profile, 32), [0.85, 0.9, 0.92, 0.5]);
+    b.add_visual_rgba(
+        shapes::solid_lathe_mesh(&profile, 32),
+        [0.85, 0.9, 0.92, 0.5],
+    );
     let k = ctx.uniform(0.0, 6.0) as usize;
     let fill = ctx.palette(k);
-    b.add_visual(shapes::solid_lathe_mesh(&[(r * 0.92, 0.004), (r * 0.92, (h - lid_h) * 0.7)], 24), if ctx.variant == "spice" { [0.6, 0.3, 0.1] } else { fill });
-    b.add_rod([0.0, 0.0, h - lid_h], [0.0, 0.0, h], r * 0.95, ctx.accent_color)?;
+    b.add_visual(
+        shapes::solid_lathe_mesh(&[(r * 0.92, 0.004), (r * 0.92, (h - lid_h) * 0.7)], 24),
+        if ctx.variant == "spice" {
+            [0.6, 0.3, 0.1]
+        } else {
+            fill
+        },
+    );
+    b.add_rod(
+        [0.0, 0.0, h - lid_h],
+        [0.0, 0.0, h],
+        r * 0.95,
+        ctx.accent_color,
+    )?;
     single(b.finish()?, vec![])
 }
 
@@ -237,16 +362,44 @@ fn pot(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     if ctx.variant == "pan" {
         let r = d / 2.0;
         let cx = -w / 2.0 + r;
-        b.add_vessel([cx, 0.0, 0.0], &[(r * 0.85, 0.0), (r, h)], 0.003, 0.004, 12, ctx.color)?;
-        b.add_rod([cx + r, 0.0, h * 0.8], [w / 2.0 - 0.01, 0.0, h + 0.0 - 0.012], 0.011, BLACK)?;
-        return single(b.finish()?, vec![surface("inside", "body", [cx, 0.0, 0.004], [r, r], h)]);
+        b.add_vessel(
+            [cx, 0.0, 0.0],
+            &[(r * 0.85, 0.0), (r, h)],
+            0.003,
+            0.004,
+            12,
+            ctx.color,
+        )?;
+        b.add_rod(
+            [cx + r, 0.0, h * 0.8],
+            [w / 2.0 - 0.01, 0.0, h + 0.0 - 0.012],
+            0.011,
+            BLACK,
+        )?;
+        return single(
+            b.finish()?,
+            vec![surface("inside", "body", [cx, 0.0, 0.004], [r, r], h)],
+        );
     }
     let r = d / 2.0;
     b.add_vessel([0.0; 3], &[(r, 0.0), (r, h)], 0.003, 0.005, 16, ctx.color)?;
     for sx in [-1.0, 1.0] {
-        b.add_box([sx * (w / 2.0 - (w / 2.0 - r) / 2.0), 0.0, h * 0.8], [w / 2.0 - r + 0.004, 0.05, 0.015], BLACK)?;
+        b.add_box(
+            [sx * (w / 2.0 - (w / 2.0 - r) / 2.0), 0.0, h * 0.8],
+            [w / 2.0 - r + 0.004, 0.05, 0.015],
+            BLACK,
+        )?;
     }
-    single(b.finish()?, vec![surface("inside", "body", [0.0, 0.0, 0.005], [r * 1.3, r * 1.3], h)])
+    single(
+        b.finish()?,
+        vec![surface(
+            "inside",
+            "body",
+            [0.0, 0.0, 0.005],
+            [r * 1.3, r * 1.3],
+            h,
+        )],
+    )
 }
 
 /// Cutting board: a rounded slab with a handle hole shown at one end.
@@ -254,8 +407,15 @@ fn cutting_board(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
     let mut b = body(ctx);
     b.add_rounded_box([0.0, 0.0, h / 2.0], [w, d, h], h * 0.4, ctx.color)?;
-    b.add_detail([w / 2.0 - 0.04, 0.0, h - 0.0005], [0.04, 0.015, 0.002], shade(ctx.color, 0.5));
-    single(b.finish()?, vec![surface("top", "body", [0.0, 0.0, h], [w, d], 0.2)])
+    b.add_detail(
+        [w / 2.0 - 0.04, 0.0, h - 0.0005],
+        [0.04, 0.015, 0.002],
+        shade(ctx.color, 0.5),
+    );
+    single(
+        b.finish()?,
+        vec![surface("top", "body", [0.0, 0.0, h], [w, d], 0.2)],
+    )
 }
 
 /// Serving tray: a flat base with a low rim and two handles.
@@ -266,12 +426,29 @@ fn tray(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     b.add_box([0.0, 0.0, t / 2.0], [w, d, t], ctx.color)?;
     let rim = 0.008;
     for sy in [-1.0, 1.0] {
-        b.add_box([0.0, sy * (d / 2.0 - rim / 2.0), h / 2.0], [w, rim, h], ctx.color)?;
+        b.add_box(
+            [0.0, sy * (d / 2.0 - rim / 2.0), h / 2.0],
+            [w, rim, h],
+            ctx.color,
+        )?;
     }
     for sx in [-1.0, 1.0] {
-        b.add_box([sx * (w / 2.0 - rim / 2.0), 0.0, h / 2.0], [rim, d - 2.0 * rim, h], shade(ctx.color, 0.9))?;
+        b.add_box(
+            [sx * (w / 2.0 - rim / 2.0), 0.0, h / 2.0],
+            [rim, d - 2.0 * rim, h],
+            shade(ctx.color, 0.9),
+        )?;
     }
-    single(b.finish()?, vec![surface("top", "body", [0.0, 0.0, t], [w - 2.0 * rim, d - 2.0 * rim], 0.3)])
+    single(
+        b.finish()?,
+        vec![surface(
+            "top",
+            "body",
+            [0.0, 0.0, t],
+            [w - 2.0 * rim, d - 2.0 * rim],
+            0.3,
+        )],
+    )
 }
 
 /// Teapot (or `kettle`): a round body, a spout on +X, a handle on -X and a lid knob.
@@ -281,24 +458,67 @@ fn teapot(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let r = d / 2.0;
     let body_h = h * 0.8;
     // The body sits toward the handle side so spout and handle fit the width.
-    let cx = if ctx.variant == "kettle" { -w / 2.0 + r } else { 0.0 };
-    let profile: Vec<(f64, f64)> = if ctx.variant == "kettle" {
-        vec![(r * 0.95, 0.0), (r, body_h * 0.2), (r * 0.9, body_h * 0.8), (r * 0.55, body_h)]
+    let cx = if ctx.variant == "kettle" {
+        -w / 2.0 + r
     } else {
-        vec![(r * 0.6, 0.0), (r * 0.95, body_h * 0.35), (r, body_h * 0.55), (r * 0.7, body_h * 0.9), (r * 0.45, body_h)]
+        0.0
+    };
+    let profile: Vec<(f64, f64)> = if ctx.variant == "kettle" {
+        vec![
+            (r * 0.95, 0.0),
+            (r, body_h * 0.2),
+            (r * 0.9, body_h * 0.8),
+            (r * 0.55, body_h),
+        ]
+    } else {
+        vec![
+            (r * 0.6, 0.0),
+            (r * 0.95, body_h * 0.35),
+            (r, body_h * 0.55),
+            (r * 0.7, body_h * 0.9),
+            (r * 0.45, body_h),
+        ]
     };
     b.shell(Some(0.003));
     b.add_solid_lathe_at([cx, 0.0], &profile, ctx.color)?;
     b.shell(None);
-    b.add_ellipsoid([cx, 0.0, body_h + (h - body_h) * 0.4], [r * 0.12, r * 0.12, (h - body_h) * 0.4], ctx.accent_color)?;
+    b.add_ellipsoid(
+        [cx, 0.0, body_h + (h - body_h) * 0.4],
+        [r * 0.12, r * 0.12, (h - body_h) * 0.4],
+        ctx.accent_color,
+    )?;
     // Spout toward +X.
     let sx = w / 2.0 - 0.008;
-    b.add_frustum([cx + r * 0.8, 0.0, body_h * 0.3], [sx, 0.0, body_h * 0.85], 0.016, 0.008, ctx.color)?;
+    b.add_frustum(
+        [cx + r * 0.8, 0.0, body_h * 0.3],
+        [sx, 0.0, body_h * 0.85],
+        0.016,
+        0.008,
+        ctx.color,
+    )?;
     // Handle toward -X (or over the top for a kettle).
     if ctx.variant == "kettle" {
-        b.add_tube(&[[cx - r * 0.4, 0.0, body_h], [cx - r * 0.3, 0.0, h - 0.01], [cx + r * 0.3, 0.0, h - 0.01], [cx + r * 0.4, 0.0, body_h]], 0.01, BLACK)?;
+        b.add_tube(
+            &[
+                [cx - r * 0.4, 0.0, body_h],
+                [cx - r * 0.3, 0.0, h - 0.01],
+                [cx + r * 0.3, 0.0, h - 0.01],
+                [cx + r * 0.4, 0.0, body_h],
+            ],
+            0.01,
+            BLACK,
+        )?;
     } else {
-        b.add_tube(&[[-r * 0.9, 0.0, body_h * 0.75], [-w / 2.0 + 0.01, 0.0, body_h * 0.65], [-w / 2.0 + 0.01, 0.0, body_h * 0.3], [-r * 0.9, 0.0, body_h * 0.25]], 0.008, ctx.color)?;
+        b.add_tube(
+            &[
+                [-r * 0.9, 0.0, body_h * 0.75],
+                [-w / 2.0 + 0.01, 0.0, body_h * 0.65],
+                [-w / 2.0 + 0.01, 0.0, body_h * 0.3],
+                [-r * 0.9, 0.0, body_h * 0.25],
+            ],
+            0.008,
+            ctx.color,
+        )?;
     }
     single(b.finish()?, vec![])
 }
@@ -312,30 +532,59 @@ fn cutlery(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let head_len = w - handle_len;
     let x_split = -w / 2.0 + handle_len;
     let t = h.min(0.004);
-    match ctx.variant {
-        "chopsticks" => {
-            for sy in [-1.0, 1.0] {
-                b.add_frustum([-w / 2.0, sy * d / 4.0, d / 4.0], [w / 2.0, sy * d / 4.0 * 0.6, d / 4.0], d / 4.0, d / 8.0, steel)?;
-            }
-            return single(b.finish()?, vec![]);
+    if ctx.variant == "chopsticks" {
+        for sy in [-1.0, 1.0] {
+            b.add_frustum(
+                [-w / 2.0, sy * d / 4.0, d / 4.0],
+                [w / 2.0, sy * d / 4.0 * 0.6, d / 4.0],
+                d / 4.0,
+                d / 8.0,
+                steel,
+            )?;
         }
-        _ => {}
+        return single(b.finish()?, vec![]);
     }
     // Handle: a slightly raised slab.
-    b.add_rounded_box([-w / 2.0 + handle_len / 2.0, 0.0, h / 2.0], [handle_len, d * 0.45, h], 0.002, steel)?;
+    b.add_rounded_box(
+        [-w / 2.0 + handle_len / 2.0, 0.0, h / 2.0],
+        [handle_len, d * 0.45, h],
+        0.002,
+        steel,
+    )?;
     match ctx.variant {
         "knife" => {
-            let blade = [[x_split, -d * 0.5], [w / 2.0, -d * 0.1], [w / 2.0 - 0.02, d * 0.5], [x_split, d * 0.5]];
-            b.add_part(mesh::prism_mesh(&blade, 0.0, t), ConvexPiece::prism(&blade, 0.0, t)?, shade(steel, 1.1));
+            let blade = [
+                [x_split, -d * 0.5],
+                [w / 2.0, -d * 0.1],
+                [w / 2.0 - 0.02, d * 0.5],
+                [x_split, d * 0.5],
+            ];
+            b.add_part(
+                mesh::prism_mesh(&blade, 0.0, t),
+                ConvexPiece::prism(&blade, 0.0, t)?,
+                shade(steel, 1.1),
+            );
         }
         "spoon" => {
-            b.add_ellipsoid([x_split + head_len / 2.0, 0.0, h * 0.4], [head_len / 2.0, d / 2.0, h * 0.4], steel)?;
+            b.add_ellipsoid(
+                [x_split + head_len / 2.0, 0.0, h * 0.4],
+                [head_len / 2.0, d / 2.0, h * 0.4],
+                steel,
+            )?;
         }
         _ => {
-            b.add_box([x_split + head_len * 0.15, 0.0, t / 2.0], [head_len * 0.3, d * 0.9, t], steel)?;
+            b.add_box(
+                [x_split + head_len * 0.15, 0.0, t / 2.0],
+                [head_len * 0.3, d * 0.9, t],
+                steel,
+            )?;
             for k in 0..4 {
                 let y = -d * 0.4 + k as f64 * d * 0.8 / 3.0;
-                b.add_box([x_split + head_len * 0.65, y, t / 2.0], [head_len * 0.7, d * 0.12, t], steel)?;
+                b.add_box(
+                    [x_split + head_len * 0.65, y, t / 2.0],
+                    [head_len * 0.7, d * 0.12, t],
+                    steel,
+                )?;
             }
         }
     }
@@ -347,8 +596,18 @@ fn holder(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, _d, h] = ctx.size;
     let r = w / 2.0;
     let mut b = body(ctx);
-    b.add_vessel([0.0; 3], &[(r * 0.95, 0.0), (r, h)], 0.003, 0.006, 12, ctx.color)?;
-    single(b.finish()?, vec![surface("inside", "body", [0.0, 0.0, 0.006], [r, r], h)])
+    b.add_vessel(
+        [0.0; 3],
+        &[(r * 0.95, 0.0), (r, h)],
+        0.003,
+        0.006,
+        12,
+        ctx.color,
+    )?;
+    single(
+        b.finish()?,
+        vec![surface("inside", "body", [0.0, 0.0, 0.006], [r, r], h)],
+    )
 }
 
 /// Food container / lunch box: a rounded box with a coloured lid.
@@ -357,12 +616,24 @@ fn food_container(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let mut b = body(ctx);
     b.density(1000.0);
     b.shell(Some(0.002));
-    b.add_rounded_box([0.0, 0.0, (h - 0.015) / 2.0], [w, d, h - 0.015], 0.01, [0.9, 0.92, 0.93])?;
+    b.add_rounded_box(
+        [0.0, 0.0, (h - 0.015) / 2.0],
+        [w, d, h - 0.015],
+        0.01,
+        [0.9, 0.92, 0.93],
+    )?;
     b.shell(None);
     b.material_density();
     b.add_rounded_box([0.0, 0.0, h - 0.0075], [w, d, 0.015], 0.005, ctx.color)?;
-    b.add_detail([0.0, 0.0, (h - 0.015) * 0.45], [w * 0.9, d * 0.9, (h - 0.015) * 0.7], ctx.palette(2));
-    single(b.finish()?, vec![surface("top", "body", [0.0, 0.0, h], [w, d], 0.3)])
+    b.add_detail(
+        [0.0, 0.0, (h - 0.015) * 0.45],
+        [w * 0.9, d * 0.9, (h - 0.015) * 0.7],
+        ctx.palette(2),
+    );
+    single(
+        b.finish()?,
+        vec![surface("top", "body", [0.0, 0.0, h], [w, d], 0.3)],
+    )
 }
 
 /// Toaster: a rounded body with two bread slots and a lever.
@@ -373,7 +644,11 @@ fn toaster(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     b.add_rounded_box([0.0, 0.0, h / 2.0], [w, d, h], 0.03, ctx.color)?;
     b.shell(None);
     for sx in [-1.0, 1.0] {
-        b.add_detail([sx * w * 0.18, 0.0, h + 0.0005], [0.03, d * 0.7, 0.001], BLACK);
+        b.add_detail(
+            [sx * w * 0.18, 0.0, h + 0.0005],
+            [0.03, d * 0.7, 0.001],
+            BLACK,
+        );
     }
     b.add_detail([w / 2.0 + 0.0005, 0.0, h * 0.7], [0.001, 0.02, 0.04], BLACK);
     single(b.finish()?, vec![])
@@ -385,14 +660,33 @@ fn coffee_maker(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let mut b = body(ctx);
     b.shell(Some(0.003));
     b.add_box([0.0, 0.0, 0.02], [w, d, 0.04], ctx.color)?;
-    b.add_box([0.0, -d / 2.0 + d * 0.2, h / 2.0], [w, d * 0.4, h], ctx.color)?;
+    b.add_box(
+        [0.0, -d / 2.0 + d * 0.2, h / 2.0],
+        [w, d * 0.4, h],
+        ctx.color,
+    )?;
     b.add_box([0.0, 0.0, h - 0.04], [w, d, 0.08], ctx.color)?;
     b.shell(None);
     let cr = (w.min(d * 0.6) / 2.0) * 0.85;
     let at = crate::scene::Pose::from_xyz(0.0, d * 0.15, 0.0);
     b.add_part_rgba(
-        shapes::solid_lathe_mesh(&[(cr * 0.9, 0.04), (cr, 0.08), (cr * 0.8, h * 0.5), (cr * 0.6, h * 0.55)], 24).transformed(&at),
-        shapes::frustum_piece([0.0, d * 0.15, 0.04], [0.0, d * 0.15, h * 0.55], cr, cr * 0.6, 12)?,
+        shapes::solid_lathe_mesh(
+            &[
+                (cr * 0.9, 0.04),
+                (cr, 0.08),
+                (cr * 0.8, h * 0.5),
+                (cr * 0.6, h * 0.55),
+            ],
+            24,
+        )
+        .transformed(&at),
+        shapes::frustum_piece(
+            [0.0, d * 0.15, 0.04],
+            [0.0, d * 0.15, h * 0.55],
+            cr,
+            cr * 0.6,
+            12,
+        )?,
         [0.3, 0.2, 0.12, 0.7],
     );
     single(b.finish()?, vec![])
@@ -403,7 +697,16 @@ fn tube(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
     let mut b = body(ctx);
     let cap = w * 0.15;
-    b.add_ellipsoid([cap / 2.0, 0.0, h / 2.0], [(w - cap) / 2.0, d / 2.0, h / 2.0], ctx.color)?;
-    b.add_rod([-w / 2.0, 0.0, h / 2.0], [-w / 2.0 + cap, 0.0, h / 2.0], h * 0.4, WHITE)?;
+    b.add_ellipsoid(
+        [cap / 2.0, 0.0, h / 2.0],
+        [(w - cap) / 2.0, d / 2.0, h / 2.0],
+        ctx.color,
+    )?;
+    b.add_rod(
+        [-w / 2.0, 0.0, h / 2.0],
+        [-w / 2.0 + cap, 0.0, h / 2.0],
+        h * 0.4,
+        WHITE,
+    )?;
     single(b.finish()?, vec![])
 }

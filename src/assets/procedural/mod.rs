@@ -88,6 +88,17 @@ pub enum Kind {
     ThinCovering,
 }
 
+impl Kind {
+    /// `procedural`, `articulated`, `thin_covering`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Kind::Procedural => "procedural",
+            Kind::Articulated => "articulated",
+            Kind::ThinCovering => "thin_covering",
+        }
+    }
+}
+
 /// Size prior and defaults of one category.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Prior {
@@ -300,7 +311,8 @@ pub(crate) struct Generated {
     pub surfaces: Vec<SurfaceRecord>,
 }
 
-pub(crate) type GeneratorFn = fn(&mut GenContext) -> Result<Generated, crate::geometry::GeometryError>;
+pub(crate) type GeneratorFn =
+    fn(&mut GenContext) -> Result<Generated, crate::geometry::GeometryError>;
 
 fn generator(name: &str) -> Option<GeneratorFn> {
     static TABLE: OnceLock<BTreeMap<&'static str, GeneratorFn>> = OnceLock::new();
@@ -339,8 +351,17 @@ fn round_size(size: [f64; 3]) -> [f64; 3] {
 fn is_wood(name: &str) -> bool {
     matches!(
         name,
-        "wood" | "oak" | "walnut" | "pine" | "mdf" | "cherry" | "maple" | "mahogany" | "teak"
-            | "birch" | "laminate"
+        "wood"
+            | "oak"
+            | "walnut"
+            | "pine"
+            | "mdf"
+            | "cherry"
+            | "maple"
+            | "mahogany"
+            | "teak"
+            | "birch"
+            | "laminate"
     )
 }
 
@@ -349,9 +370,24 @@ pub fn build(request: &AssetRequest) -> Result<Asset, AssetError> {
     build_styled(request, None)
 }
 
-/// Builds the asset a request describes in a style (accent material and colour, palette,
-/// wood replaced by the style's main material unless the request names a material).
-pub fn build_styled(request: &AssetRequest, style: Option<&Style>) -> Result<Asset, AssetError> {
+/// Everything decided about a build before the generator runs.
+struct Plan {
+    category: &'static str,
+    prior: &'static Prior,
+    gen_fn: GeneratorFn,
+    size: [f64; 3],
+    material_name: String,
+    material: Material,
+    color: [f64; 3],
+    accent_name: String,
+    accent: Material,
+    accent_color: [f64; 3],
+    style_name: Option<String>,
+    id: String,
+    rng: ChaCha8Rng,
+}
+
+fn plan(request: &AssetRequest, style: Option<&Style>) -> Result<Plan, AssetError> {
     let category = resolve_category(&request.category)
         .ok_or_else(|| AssetError::UnknownCategory(request.category.clone()))?;
     let prior = prior(category).ok_or_else(|| AssetError::UnknownCategory(category.into()))?;
@@ -403,7 +439,6 @@ pub fn build_styled(request: &AssetRequest, style: Option<&Style>) -> Result<Ass
         (None, Some(_)) => accent.color,
         (None, None) => parts::shade(color, 0.82),
     };
-
     let style_name = style.map(|s| s.name.clone());
     let key = serde_json::json!({
         "generator": prior.generator,
@@ -416,50 +451,73 @@ pub fn build_styled(request: &AssetRequest, style: Option<&Style>) -> Result<Ass
         "seed": request.seed,
     });
     let id = content_id(category, &key);
-    let mut ctx = GenContext {
+    Ok(Plan {
+        category,
+        prior,
+        gen_fn,
         size,
+        material_name,
         material: mat,
         color,
+        accent_name,
         accent,
         accent_color,
-        variant: prior.variant.as_str(),
-        style: style.cloned(),
+        style_name,
+        id,
         rng,
+    })
+}
+
+/// The content id [`build_styled`] would give this request, without building it (for cache
+/// look-ups).
+pub fn asset_id(request: &AssetRequest, style: Option<&Style>) -> Result<String, AssetError> {
+    plan(request, style).map(|p| p.id)
+}
+
+/// Builds the asset a request describes in a style (accent material and colour, palette,
+/// wood replaced by the style's main material unless the request names a material).
+pub fn build_styled(request: &AssetRequest, style: Option<&Style>) -> Result<Asset, AssetError> {
+    let p = plan(request, style)?;
+    let mut ctx = GenContext {
+        size: p.size,
+        material: p.material,
+        color: p.color,
+        accent: p.accent,
+        accent_color: p.accent_color,
+        variant: p.prior.variant.as_str(),
+        style: style.cloned(),
+        rng: p.rng,
     };
-    let generated = gen_fn(&mut ctx).map_err(|source| AssetError::Geometry {
-        asset: id.clone(),
+    let generated = (p.gen_fn)(&mut ctx).map_err(|source| AssetError::Geometry {
+        asset: p.id.clone(),
         source,
     })?;
     let kind = if generated.joints.is_empty() {
-        prior.kind
+        p.prior.kind
     } else {
         Kind::Articulated
     };
     let mut asset = Asset {
-        id,
-        category: category.to_string(),
-        material: material_name,
+        id: p.id,
+        category: p.category.to_string(),
+        material: p.material_name,
         links: generated.links,
         joints: generated.joints,
         surfaces: generated.surfaces,
         is_static: false,
         provenance: serde_json::json!({
-            "strategy": match kind {
-                Kind::Procedural => "procedural",
-                Kind::Articulated => "articulated",
-                Kind::ThinCovering => "thin_covering",
-            },
-            "generator": prior.generator,
-            "variant": prior.variant,
+            "strategy": kind.as_str(),
+            "generator": p.prior.generator,
+            "variant": p.prior.variant,
             "generator_version": GENERATOR_VERSION,
-            "parameters": {"size": size, "color": color, "accent": accent_name, "style": style_name},
-            "support": prior.support.as_str(),
+            "parameters": {"size": p.size, "color": p.color, "accent": p.accent_name, "style": p.style_name},
+            "support": p.prior.support.as_str(),
             "seed": request.seed,
             "license": "CC0-1.0 (generated by scenesmith)",
         }),
     };
-    physical::check(&asset, prior.support)?;
-    let summary = physical::summarize(&asset, prior.support);
+    physical::check(&asset, p.prior.support)?;
+    let summary = physical::summarize(&asset, p.prior.support);
     asset.provenance["physics"] = serde_json::to_value(&summary).unwrap_or_default();
     Ok(asset)
 }

@@ -152,23 +152,29 @@ pub(crate) fn bar_handle(
     let r = 0.006;
     let [x, y, z] = center;
     let (a, c) = if vertical {
-        ([x, y + reach, z - length / 2.0], [x, y + reach, z + length / 2.0])
+        (
+            [x, y + reach, z - length / 2.0],
+            [x, y + reach, z + length / 2.0],
+        )
     } else {
-        ([x - length / 2.0, y + reach, z], [x + length / 2.0, y + reach, z])
+        (
+            [x - length / 2.0, y + reach, z],
+            [x + length / 2.0, y + reach, z],
+        )
     };
     b.add_rod(a, c, r, color)?;
     for p in [a, c] {
-        b.add_box(
-            [p[0], y + reach / 2.0, p[2]],
-            [0.012, reach, 0.012],
-            color,
-        )?;
+        b.add_box([p[0], y + reach / 2.0, p[2]], [0.012, reach, 0.012], color)?;
     }
     Ok(())
 }
 
 /// A round knob on the +Y face.
-pub(crate) fn knob(b: &mut LinkBuilder, center: [f64; 3], color: [f64; 3]) -> Result<(), GeometryError> {
+pub(crate) fn knob(
+    b: &mut LinkBuilder,
+    center: [f64; 3],
+    color: [f64; 3],
+) -> Result<(), GeometryError> {
     let [x, y, z] = center;
     b.add_rod([x, y, z], [x, y + 0.022, z], 0.012, color)?;
     Ok(())

@@ -70,7 +70,11 @@ fn sphere_dirs(segments: usize, rings: usize) -> Vec<Vector3<f64>> {
         let phi = std::f64::consts::PI * j as f64 / rings as f64 - std::f64::consts::FRAC_PI_2;
         for i in 0..segments {
             let th = std::f64::consts::TAU * i as f64 / segments as f64;
-            out.push(Vector3::new(phi.cos() * th.cos(), phi.cos() * th.sin(), phi.sin()));
+            out.push(Vector3::new(
+                phi.cos() * th.cos(),
+                phi.cos() * th.sin(),
+                phi.sin(),
+            ));
         }
     }
     out.push(Vector3::new(0.0, 0.0, 1.0));
@@ -142,7 +146,11 @@ pub fn ellipsoid_piece(center: [f64; 3], radii: [f64; 3]) -> Result<ConvexPiece,
 /// A closed box of full extents `size` whose edges are rounded with `radius` (clamped to half
 /// the smallest extent), smooth-shaded: cushions, mattresses, appliance bodies.
 pub fn rounded_box_mesh(center: [f64; 3], size: [f64; 3], radius: f64) -> TriMesh {
-    let r = radius.min(size[0] / 2.0).min(size[1] / 2.0).min(size[2] / 2.0).max(1e-5);
+    let r = radius
+        .min(size[0] / 2.0)
+        .min(size[1] / 2.0)
+        .min(size[2] / 2.0)
+        .max(1e-5);
     let c = Vector3::from(center);
     let inner = Vector3::new(size[0] / 2.0 - r, size[1] / 2.0 - r, size[2] / 2.0 - r);
     // Each direction goes to the corner sphere of its octant; directions on an axis plane
@@ -187,7 +195,13 @@ pub fn solid_lathe_pieces(
         if (z1 - z0).abs() < 1e-6 || (r0 <= 1e-9 && r1 <= 1e-9) {
             continue;
         }
-        out.push(frustum_piece([0.0, 0.0, z0], [0.0, 0.0, z1], r0, r1, segments)?);
+        out.push(frustum_piece(
+            [0.0, 0.0, z0],
+            [0.0, 0.0, z1],
+            r0,
+            r1,
+            segments,
+        )?);
     }
     Ok(out)
 }
@@ -217,7 +231,9 @@ pub fn vessel(
     sectors: usize,
 ) -> Result<(TriMesh, Vec<ConvexPiece>), GeometryError> {
     if outer.len() < 2 {
-        return Err(GeometryError::DegenerateHull { points: outer.len() });
+        return Err(GeometryError::DegenerateHull {
+            points: outer.len(),
+        });
     }
     let inner: Vec<(f64, f64)> = outer
         .iter()
@@ -236,7 +252,9 @@ pub fn vessel(
         [0.0, 0.0, 0.0],
         [0.0, 0.0, base],
         outer[0].0,
-        r_base.min(outer[0].0 + (outer[1].0 - outer[0].0) * base / (outer[1].1 - outer[0].1).max(1e-9)),
+        r_base.min(
+            outer[0].0 + (outer[1].0 - outer[0].0) * base / (outer[1].1 - outer[0].1).max(1e-9),
+        ),
         24,
     )?);
     for k in 0..outer.len() - 1 {
@@ -285,8 +303,12 @@ pub fn textured_slab(center: [f64; 3], size: [f64; 3], face: TexFace, repeat: [f
         .map(|(p, n)| {
             let u = (p[0] - lo[0]) / size[0];
             match face {
-                TexFace::Top if n[2] > 0.9 => [u * repeat[0], (1.0 - (p[1] - lo[1]) / size[1]) * repeat[1]],
-                TexFace::Front if n[1] > 0.9 => [u * repeat[0], (1.0 - (p[2] - lo[2]) / size[2]) * repeat[1]],
+                TexFace::Top if n[2] > 0.9 => {
+                    [u * repeat[0], (1.0 - (p[1] - lo[1]) / size[1]) * repeat[1]]
+                }
+                TexFace::Front if n[1] > 0.9 => {
+                    [u * repeat[0], (1.0 - (p[2] - lo[2]) / size[2]) * repeat[1]]
+                }
                 _ => [0.001, 0.001],
             }
         })
@@ -307,7 +329,11 @@ pub fn xz_prism_mesh(ring_xz: &[[f64; 2]], y0: f64, y1: f64) -> TriMesh {
 }
 
 /// Convex piece matching [`xz_prism_mesh`].
-pub fn xz_prism_piece(ring_xz: &[[f64; 2]], y0: f64, y1: f64) -> Result<ConvexPiece, GeometryError> {
+pub fn xz_prism_piece(
+    ring_xz: &[[f64; 2]],
+    y0: f64,
+    y1: f64,
+) -> Result<ConvexPiece, GeometryError> {
     let pts: Vec<[f64; 3]> = ring_xz
         .iter()
         .flat_map(|p| [[p[0], y0, p[1]], [p[0], y1, p[1]]])
@@ -327,7 +353,11 @@ pub fn yz_prism_mesh(ring_yz: &[[f64; 2]], x0: f64, x1: f64) -> TriMesh {
 }
 
 /// Convex piece matching [`yz_prism_mesh`].
-pub fn yz_prism_piece(ring_yz: &[[f64; 2]], x0: f64, x1: f64) -> Result<ConvexPiece, GeometryError> {
+pub fn yz_prism_piece(
+    ring_yz: &[[f64; 2]],
+    x0: f64,
+    x1: f64,
+) -> Result<ConvexPiece, GeometryError> {
     let pts: Vec<[f64; 3]> = ring_yz
         .iter()
         .flat_map(|p| [[x0, p[0], p[1]], [x1, p[0], p[1]]])
@@ -372,7 +402,8 @@ mod tests {
 
     #[test]
     fn vessel_is_open_and_closed() {
-        let (visual, pieces) = vessel(&[(0.04, 0.0), (0.06, 0.05), (0.07, 0.08)], 0.004, 0.006, 12).unwrap();
+        let (visual, pieces) =
+            vessel(&[(0.04, 0.0), (0.06, 0.05), (0.07, 0.08)], 0.004, 0.006, 12).unwrap();
         check_watertight(&visual).unwrap();
         assert!(enclosed_volume(&visual) > 0.0);
         assert_eq!(pieces.len(), 1 + 2 * 12);

@@ -59,7 +59,13 @@ impl Carcass {
     }
     /// The `top` surface of a case `d` deep and `h` high, over the carcass (not the fronts).
     pub fn top_surface(&self, w: f64, d: f64, h: f64, clearance: f64) -> SurfaceRecord {
-        surface("top", "body", [0.0, (-d / 2.0 + self.y_front) / 2.0, h], [w, self.y_front + d / 2.0], clearance)
+        surface(
+            "top",
+            "body",
+            [0.0, (-d / 2.0 + self.y_front) / 2.0, h],
+            [w, self.y_front + d / 2.0],
+            clearance,
+        )
     }
 }
 
@@ -120,7 +126,11 @@ pub(super) fn carcass_opts(
         shade(color, 0.9),
     )?;
     if plinth > 0.0 && !on_legs {
-        b.add_box([0.0, y_front - 0.03, plinth / 2.0], [iw, PANEL, plinth], shade(color, 0.7))?;
+        b.add_box(
+            [0.0, y_front - 0.03, plinth / 2.0],
+            [iw, PANEL, plinth],
+            shade(color, 0.7),
+        )?;
     }
     Ok(Carcass {
         x0: -w / 2.0 + PANEL,
@@ -150,7 +160,11 @@ fn inner_shelves(
     for i in 0..n {
         let z = z_lo + pitch * i as f64;
         if i > 0 {
-            b.add_box([(c.x0 + c.x1) / 2.0, sy, z], [c.inner_w() - 0.002, sd, PANEL], color)?;
+            b.add_box(
+                [(c.x0 + c.x1) / 2.0, sy, z],
+                [c.inner_w() - 0.002, sd, PANEL],
+                color,
+            )?;
         }
         let base = if i > 0 { z + PANEL / 2.0 } else { z };
         let top = z_lo + pitch * (i + 1) as f64 - if i + 1 < n { PANEL / 2.0 } else { 0.0 };
@@ -194,6 +208,7 @@ fn assemble(
 }
 
 /// A column of drawers filling `opening` from top to bottom; heights grow downward.
+#[allow(clippy::too_many_arguments)]
 fn drawer_column(
     b: &mut LinkBuilder,
     c: &Carcass,
@@ -213,13 +228,30 @@ fn drawer_column(
     let depth = c.inner_d() - 0.02;
     for (i, wgt) in weights.iter().enumerate() {
         let hh = avail * wgt / total;
-        let o = Opening { x0: x[0], x1: x[1], z0: top - hh, z1: top };
-        let (l, j, s) = drawer(&format!("drawer_{}", first + i), "body", o, c.y_front, depth, div / 2.0 - 0.0015, look)?;
+        let o = Opening {
+            x0: x[0],
+            x1: x[1],
+            z0: top - hh,
+            z1: top,
+        };
+        let (l, j, s) = drawer(
+            &format!("drawer_{}", first + i),
+            "body",
+            o,
+            c.y_front,
+            depth,
+            div / 2.0 - 0.0015,
+            look,
+        )?;
         parts.push((l, j));
         surfaces.push(s);
         top -= hh;
         if i + 1 < n {
-            b.add_box([(x[0] + x[1]) / 2.0, c.cy(), top - div / 2.0], [x[1] - x[0], c.inner_d(), div], look.inner)?;
+            b.add_box(
+                [(x[0] + x[1]) / 2.0, c.cy(), top - div / 2.0],
+                [x[1] - x[0], c.inner_d(), div],
+                look.inner,
+            )?;
             top -= div;
         }
     }
@@ -237,14 +269,39 @@ fn cabinet(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let c = carcass(&mut b, w, d, h, plinth, FRONT, ctx.color, false)?;
     let mut surfaces = vec![c.top_surface(w, d, h, 1.0)];
     surfaces.extend(inner_shelves(&mut b, &c, c.z0, c.z1, 2, 0, ctx.color)?);
-    let opening = Opening { x0: c.x0, x1: c.x1, z0: c.z0, z1: c.z1 };
+    let opening = Opening {
+        x0: c.x0,
+        x1: c.x1,
+        z0: c.z0,
+        z1: c.z1,
+    };
     let double = ctx.variant == "double" || (w > 0.9 && ctx.variant != "single");
     let mut parts = Vec::new();
     let ov = PANEL / 2.0 - 0.002;
     if double {
-        parts.extend(door_pair("body", opening, c.y_front, ov, FRONT, 100f64.to_radians(), false, look(ctx))?);
+        parts.extend(door_pair(
+            "body",
+            opening,
+            c.y_front,
+            ov,
+            FRONT,
+            100f64.to_radians(),
+            false,
+            look(ctx),
+        )?);
     } else {
-        parts.push(door("door", "body", opening, c.y_front, ov, FRONT, Hinge::Left, 100f64.to_radians(), false, look(ctx))?);
+        parts.push(door(
+            "door",
+            "body",
+            opening,
+            c.y_front,
+            ov,
+            FRONT,
+            Hinge::Left,
+            100f64.to_radians(),
+            false,
+            look(ctx),
+        )?);
     }
     assemble(b, parts, surfaces)
 }
@@ -258,15 +315,45 @@ fn wardrobe(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let shelf_z = c.z1 - 0.3;
     let mut surfaces = vec![c.top_surface(w, d, h, 0.5)];
     let sd = c.inner_d() - 0.01;
-    b.add_box([0.0, c.y_back + sd / 2.0, shelf_z], [c.inner_w() - 0.002, sd, PANEL], ctx.color)?;
-    surfaces.push(surface("shelf_1", "body", [0.0, c.y_back + sd / 2.0, shelf_z + PANEL / 2.0], [c.inner_w() - 0.004, sd], c.z1 - shelf_z - PANEL / 2.0));
-    b.add_rod([c.x0, c.cy(), shelf_z - 0.08], [c.x1, c.cy(), shelf_z - 0.08], 0.012, METAL)?;
-    surfaces.push(surface("shelf_0", "body", [0.0, c.y_back + sd / 2.0, c.z0], [c.inner_w() - 0.004, sd], shelf_z - c.z0 - 0.2));
+    b.add_box(
+        [0.0, c.y_back + sd / 2.0, shelf_z],
+        [c.inner_w() - 0.002, sd, PANEL],
+        ctx.color,
+    )?;
+    surfaces.push(surface(
+        "shelf_1",
+        "body",
+        [0.0, c.y_back + sd / 2.0, shelf_z + PANEL / 2.0],
+        [c.inner_w() - 0.004, sd],
+        c.z1 - shelf_z - PANEL / 2.0,
+    ));
+    b.add_rod(
+        [c.x0, c.cy(), shelf_z - 0.08],
+        [c.x1, c.cy(), shelf_z - 0.08],
+        0.012,
+        METAL,
+    )?;
+    surfaces.push(surface(
+        "shelf_0",
+        "body",
+        [0.0, c.y_back + sd / 2.0, c.z0],
+        [c.inner_w() - 0.004, sd],
+        shelf_z - c.z0 - 0.2,
+    ));
     let ov = PANEL / 2.0 - 0.002;
-    let full = Opening { x0: c.x0, x1: c.x1, z0: c.z0, z1: c.z1 };
+    let full = Opening {
+        x0: c.x0,
+        x1: c.x1,
+        z0: c.z0,
+        z1: c.z1,
+    };
     let parts = door_pair("body", full, c.y_front, ov, FRONT, 1.75, false, look(ctx))?.into();
     // Cornice detail across the top.
-    b.add_detail([0.0, c.y_front - 0.01, h - 0.01], [w, 0.02, 0.02], shade(ctx.color, 0.85));
+    b.add_detail(
+        [0.0, c.y_front - 0.01, h - 0.01],
+        [w, 0.02, 0.02],
+        shade(ctx.color, 0.85),
+    );
     assemble(b, parts, surfaces)
 }
 
@@ -276,7 +363,11 @@ fn wardrobe(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
 fn dresser(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
     let mut b = body(ctx);
-    let plinth = if ctx.variant == "filing" { 0.03 } else { 0.06_f64.min(h * 0.1) };
+    let plinth = if ctx.variant == "filing" {
+        0.03
+    } else {
+        0.06_f64.min(h * 0.1)
+    };
     let c = carcass(&mut b, w, d, h, plinth, FRONT, ctx.color, false)?;
     let mut parts = Vec::new();
     let mut surfaces = vec![c.top_surface(w, d, h, 1.0)];
@@ -286,23 +377,87 @@ fn dresser(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     match ctx.variant {
         "nightstand" => {
             let split = c.z1 - (c.z1 - c.z0) * 0.4;
-            b.add_box([0.0, c.cy(), split - PANEL / 2.0], [c.inner_w(), c.inner_d(), PANEL], ctx.color)?;
-            drawer_column(&mut b, &c, [c.x0, c.x1], [split, z_hi], 1, 0, lk, &mut parts, &mut surfaces)?;
-            surfaces.push(surface("shelf_0", "body", [0.0, c.cy(), c.z0], [c.inner_w() - 0.004, c.inner_d() - 0.01], split - PANEL - c.z0));
+            b.add_box(
+                [0.0, c.cy(), split - PANEL / 2.0],
+                [c.inner_w(), c.inner_d(), PANEL],
+                ctx.color,
+            )?;
+            drawer_column(
+                &mut b,
+                &c,
+                [c.x0, c.x1],
+                [split, z_hi],
+                1,
+                0,
+                lk,
+                &mut parts,
+                &mut surfaces,
+            )?;
+            surfaces.push(surface(
+                "shelf_0",
+                "body",
+                [0.0, c.cy(), c.z0],
+                [c.inner_w() - 0.004, c.inner_d() - 0.01],
+                split - PANEL - c.z0,
+            ));
         }
         "filing" => {
             let n = ((h / 0.33).round() as usize).clamp(2, 5);
-            drawer_column(&mut b, &c, [c.x0, c.x1], [c.z0, z_hi], n, 0, lk, &mut parts, &mut surfaces)?;
+            drawer_column(
+                &mut b,
+                &c,
+                [c.x0, c.x1],
+                [c.z0, z_hi],
+                n,
+                0,
+                lk,
+                &mut parts,
+                &mut surfaces,
+            )?;
         }
         _ => {
             let rows = ((h / 0.22).round() as usize).clamp(2, 6);
             if w > 1.0 {
                 let mid = (c.x0 + c.x1) / 2.0;
-                b.add_box([mid, c.cy(), (c.z0 + c.z1) / 2.0], [PANEL, c.inner_d(), c.z1 - c.z0], ctx.color)?;
-                drawer_column(&mut b, &c, [c.x0, mid - PANEL / 2.0], [c.z0, z_hi], rows, 0, lk, &mut parts, &mut surfaces)?;
-                drawer_column(&mut b, &c, [mid + PANEL / 2.0, c.x1], [c.z0, z_hi], rows, rows, lk, &mut parts, &mut surfaces)?;
+                b.add_box(
+                    [mid, c.cy(), (c.z0 + c.z1) / 2.0],
+                    [PANEL, c.inner_d(), c.z1 - c.z0],
+                    ctx.color,
+                )?;
+                drawer_column(
+                    &mut b,
+                    &c,
+                    [c.x0, mid - PANEL / 2.0],
+                    [c.z0, z_hi],
+                    rows,
+                    0,
+                    lk,
+                    &mut parts,
+                    &mut surfaces,
+                )?;
+                drawer_column(
+                    &mut b,
+                    &c,
+                    [mid + PANEL / 2.0, c.x1],
+                    [c.z0, z_hi],
+                    rows,
+                    rows,
+                    lk,
+                    &mut parts,
+                    &mut surfaces,
+                )?;
             } else {
-                drawer_column(&mut b, &c, [c.x0, c.x1], [c.z0, z_hi], rows, 0, lk, &mut parts, &mut surfaces)?;
+                drawer_column(
+                    &mut b,
+                    &c,
+                    [c.x0, c.x1],
+                    [c.z0, z_hi],
+                    rows,
+                    0,
+                    lk,
+                    &mut parts,
+                    &mut surfaces,
+                )?;
             }
         }
     }
@@ -318,29 +473,88 @@ fn sideboard(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     for sx in [-1.0, 1.0] {
         for sy in [-1.0, 1.0] {
             let y = sy * (d / 2.0 - 0.05) - (FRONT + HANDLE) / 2.0;
-            b.add_frustum([sx * (w / 2.0 - 0.05), y, 0.0], [sx * (w / 2.0 - 0.05), y, legs], 0.012, 0.02, ctx.accent_color)?;
+            b.add_frustum(
+                [sx * (w / 2.0 - 0.05), y, 0.0],
+                [sx * (w / 2.0 - 0.05), y, legs],
+                0.012,
+                0.02,
+                ctx.accent_color,
+            )?;
         }
     }
     // Carcass floats on the legs: shift by building a box from `legs` up.
     let c = carcass(&mut b, w, d, h, legs, FRONT, ctx.color, true)?;
     let mut surfaces = vec![c.top_surface(w, d, h, 1.0)];
     let ov = PANEL / 2.0 - 0.002;
-    let full = Opening { x0: c.x0, x1: c.x1, z0: c.z0, z1: c.z1 };
+    let full = Opening {
+        x0: c.x0,
+        x1: c.x1,
+        z0: c.z0,
+        z1: c.z1,
+    };
     let mut parts = Vec::new();
     if ctx.variant == "tv_stand" {
         let third = c.inner_w() / 3.0;
         let xa = c.x0 + third;
         let xb = c.x1 - third;
         for x in [xa, xb] {
-            b.add_box([x, c.cy(), (c.z0 + c.z1) / 2.0], [PANEL, c.inner_d(), c.z1 - c.z0], ctx.color)?;
+            b.add_box(
+                [x, c.cy(), (c.z0 + c.z1) / 2.0],
+                [PANEL, c.inner_d(), c.z1 - c.z0],
+                ctx.color,
+            )?;
         }
-        parts.push(door("door_left", "body", Opening { x1: xa - PANEL / 2.0, ..full }, c.y_front, ov, FRONT, Hinge::Left, 1.75, false, look(ctx))?);
-        parts.push(door("door_right", "body", Opening { x0: xb + PANEL / 2.0, ..full }, c.y_front, ov, FRONT, Hinge::Right, 1.75, false, look(ctx))?);
+        parts.push(door(
+            "door_left",
+            "body",
+            Opening {
+                x1: xa - PANEL / 2.0,
+                ..full
+            },
+            c.y_front,
+            ov,
+            FRONT,
+            Hinge::Left,
+            1.75,
+            false,
+            look(ctx),
+        )?);
+        parts.push(door(
+            "door_right",
+            "body",
+            Opening {
+                x0: xb + PANEL / 2.0,
+                ..full
+            },
+            c.y_front,
+            ov,
+            FRONT,
+            Hinge::Right,
+            1.75,
+            false,
+            look(ctx),
+        )?);
         let mid_shelf = (c.z0 + c.z1) / 2.0;
         let sd = c.inner_d() - 0.01;
-        b.add_box([0.0, c.y_back + sd / 2.0, mid_shelf], [xb - xa - PANEL, sd, PANEL], ctx.color)?;
-        surfaces.push(surface("shelf_0", "body", [0.0, c.y_back + sd / 2.0, c.z0], [xb - xa - PANEL - 0.004, sd], mid_shelf - PANEL / 2.0 - c.z0));
-        surfaces.push(surface("shelf_1", "body", [0.0, c.y_back + sd / 2.0, mid_shelf + PANEL / 2.0], [xb - xa - PANEL - 0.004, sd], c.z1 - mid_shelf - PANEL / 2.0));
+        b.add_box(
+            [0.0, c.y_back + sd / 2.0, mid_shelf],
+            [xb - xa - PANEL, sd, PANEL],
+            ctx.color,
+        )?;
+        surfaces.push(surface(
+            "shelf_0",
+            "body",
+            [0.0, c.y_back + sd / 2.0, c.z0],
+            [xb - xa - PANEL - 0.004, sd],
+            mid_shelf - PANEL / 2.0 - c.z0,
+        ));
+        surfaces.push(surface(
+            "shelf_1",
+            "body",
+            [0.0, c.y_back + sd / 2.0, mid_shelf + PANEL / 2.0],
+            [xb - xa - PANEL - 0.004, sd],
+            c.z1 - mid_shelf - PANEL / 2.0,
+        ));
     } else {
         let n = ((w / 0.5).round() as usize).clamp(2, 4);
         let cw = c.inner_w() / n as f64;
@@ -348,14 +562,43 @@ fn sideboard(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
             let x0 = c.x0 + cw * i as f64;
             let x1 = x0 + cw;
             if i > 0 {
-                b.add_box([x0, c.cy(), (c.z0 + c.z1) / 2.0], [PANEL, c.inner_d(), c.z1 - c.z0], ctx.color)?;
+                b.add_box(
+                    [x0, c.cy(), (c.z0 + c.z1) / 2.0],
+                    [PANEL, c.inner_d(), c.z1 - c.z0],
+                    ctx.color,
+                )?;
             }
-            let o = Opening { x0: x0 + if i > 0 { PANEL / 2.0 } else { 0.0 }, x1: x1 - if i + 1 < n { PANEL / 2.0 } else { 0.0 }, ..full };
-            let hinge = if i % 2 == 0 { Hinge::Left } else { Hinge::Right };
+            let o = Opening {
+                x0: x0 + if i > 0 { PANEL / 2.0 } else { 0.0 },
+                x1: x1 - if i + 1 < n { PANEL / 2.0 } else { 0.0 },
+                ..full
+            };
+            let hinge = if i % 2 == 0 {
+                Hinge::Left
+            } else {
+                Hinge::Right
+            };
             // Neighbouring doors hinge on the same divider: stop before their handles meet.
-            parts.push(door(&format!("door_{i}"), "body", o, c.y_front, ov, FRONT, hinge, 1.45, false, look(ctx))?);
+            parts.push(door(
+                &format!("door_{i}"),
+                "body",
+                o,
+                c.y_front,
+                ov,
+                FRONT,
+                hinge,
+                1.45,
+                false,
+                look(ctx),
+            )?);
         }
-        surfaces.push(surface("shelf_0", "body", [0.0, c.cy(), c.z0], [c.inner_w() - 0.05, c.inner_d() - 0.01], c.z1 - c.z0));
+        surfaces.push(surface(
+            "shelf_0",
+            "body",
+            [0.0, c.cy(), c.z0],
+            [c.inner_w() - 0.05, c.inner_d() - 0.01],
+            c.z1 - c.z0,
+        ));
     }
     assemble(b, parts, surfaces)
 }
@@ -369,21 +612,56 @@ fn locker(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     b.shell(None);
     let shelf_z = c.z1 - 0.3;
     let sd = c.inner_d() - 0.01;
-    b.add_box([0.0, c.y_back + sd / 2.0, shelf_z], [c.inner_w() - 0.002, sd, PANEL], ctx.color)?;
+    b.add_box(
+        [0.0, c.y_back + sd / 2.0, shelf_z],
+        [c.inner_w() - 0.002, sd, PANEL],
+        ctx.color,
+    )?;
     let surfaces = vec![
-        surface("shelf_0", "body", [0.0, c.y_back + sd / 2.0, c.z0], [c.inner_w() - 0.004, sd], shelf_z - c.z0 - PANEL / 2.0),
-        surface("shelf_1", "body", [0.0, c.y_back + sd / 2.0, shelf_z + PANEL / 2.0], [c.inner_w() - 0.004, sd], c.z1 - shelf_z - PANEL / 2.0),
+        surface(
+            "shelf_0",
+            "body",
+            [0.0, c.y_back + sd / 2.0, c.z0],
+            [c.inner_w() - 0.004, sd],
+            shelf_z - c.z0 - PANEL / 2.0,
+        ),
+        surface(
+            "shelf_1",
+            "body",
+            [0.0, c.y_back + sd / 2.0, shelf_z + PANEL / 2.0],
+            [c.inner_w() - 0.004, sd],
+            c.z1 - shelf_z - PANEL / 2.0,
+        ),
         c.top_surface(w, d, h, 0.5),
     ];
-    let o = Opening { x0: c.x0, x1: c.x1, z0: c.z0, z1: c.z1 };
-    let (mut link, joint) = door("door", "body", o, c.y_front, PANEL / 2.0 - 0.002, FRONT, Hinge::Left, 1.75, false, look(ctx))?;
+    let o = Opening {
+        x0: c.x0,
+        x1: c.x1,
+        z0: c.z0,
+        z1: c.z1,
+    };
+    let (mut link, joint) = door(
+        "door",
+        "body",
+        o,
+        c.y_front,
+        PANEL / 2.0 - 0.002,
+        FRONT,
+        Hinge::Left,
+        1.75,
+        false,
+        look(ctx),
+    )?;
     // Vent slots near the top of the door (visual).
     let dw = o.x1 - o.x0;
     for k in 0..4 {
         let z = o.height() - 0.08 - k as f64 * 0.03;
         link.visuals.push(crate::assets::VisualPart {
             name: format!("vent_{k}"),
-            mesh: crate::geometry::mesh::box_mesh([dw / 2.0, FRONT + 0.001, z], [dw * 0.6, 0.002, 0.01]),
+            mesh: crate::geometry::mesh::box_mesh(
+                [dw / 2.0, FRONT + 0.001, z],
+                [dw * 0.6, 0.002, 0.01],
+            ),
             color: [0.05, 0.05, 0.05, 1.0],
             texture: None,
         });
@@ -398,15 +676,39 @@ fn display_case(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let c = carcass(&mut b, w, d, h, 0.1, FRONT, ctx.color, false)?;
     let mut surfaces = vec![c.top_surface(w, d, h, 0.4)];
     let n = ((c.z1 - c.z0) / 0.35).floor().clamp(1.0, 6.0) as usize;
-    surfaces.extend(inner_shelves(&mut b, &c, c.z0, c.z1, n, 0, [0.7, 0.8, 0.85])?);
+    surfaces.extend(inner_shelves(
+        &mut b,
+        &c,
+        c.z0,
+        c.z1,
+        n,
+        0,
+        [0.7, 0.8, 0.85],
+    )?);
     let ov = PANEL / 2.0 - 0.002;
-    let full = Opening { x0: c.x0, x1: c.x1, z0: c.z0, z1: c.z1 };
+    let full = Opening {
+        x0: c.x0,
+        x1: c.x1,
+        z0: c.z0,
+        z1: c.z1,
+    };
     let mut lk = look(ctx);
     lk.front = ctx.color;
     let parts = if w > 0.7 {
         door_pair("body", full, c.y_front, ov, FRONT, 1.6, true, lk)?.into()
     } else {
-        vec![door("door", "body", full, c.y_front, ov, FRONT, Hinge::Left, 1.6, true, lk)?]
+        vec![door(
+            "door",
+            "body",
+            full,
+            c.y_front,
+            ov,
+            FRONT,
+            Hinge::Left,
+            1.6,
+            true,
+            lk,
+        )?]
     };
     assemble(b, parts, surfaces)
 }
@@ -420,19 +722,46 @@ fn chest(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let bh = h - lid_t - 0.002;
     b.add_box([0.0, 0.0, t / 2.0], [w, d, t], ctx.color)?;
     for sy in [-1.0, 1.0] {
-        b.add_box([0.0, sy * (d / 2.0 - t / 2.0), bh / 2.0 + t / 2.0], [w, t, bh - t], ctx.color)?;
+        b.add_box(
+            [0.0, sy * (d / 2.0 - t / 2.0), bh / 2.0 + t / 2.0],
+            [w, t, bh - t],
+            ctx.color,
+        )?;
     }
     for sx in [-1.0, 1.0] {
-        b.add_box([sx * (w / 2.0 - t / 2.0), 0.0, bh / 2.0 + t / 2.0], [t, d - 2.0 * t, bh - t], shade(ctx.color, 0.95))?;
+        b.add_box(
+            [sx * (w / 2.0 - t / 2.0), 0.0, bh / 2.0 + t / 2.0],
+            [t, d - 2.0 * t, bh - t],
+            shade(ctx.color, 0.95),
+        )?;
     }
     // Corner straps.
     for sx in [-1.0, 1.0] {
-        b.add_detail([sx * (w / 2.0 - 0.06), d / 2.0 + 0.001, bh / 2.0], [0.03, 0.002, bh], ctx.accent_color);
+        b.add_detail(
+            [sx * (w / 2.0 - 0.06), d / 2.0 + 0.001, bh / 2.0],
+            [0.03, 0.002, bh],
+            ctx.accent_color,
+        );
     }
     let mut lk = look(ctx);
     lk.front = shade(ctx.color, 0.9);
-    let (lid_link, lid_joint) = lid("lid", "body", [-w / 2.0, w / 2.0], [-d / 2.0, d / 2.0], bh, lid_t, 1.5, lk)?;
-    let surfaces = vec![surface("inside", "body", [0.0, 0.0, t], [w - 2.0 * t, d - 2.0 * t], bh - t)];
+    let (lid_link, lid_joint) = lid(
+        "lid",
+        "body",
+        [-w / 2.0, w / 2.0],
+        [-d / 2.0, d / 2.0],
+        bh,
+        lid_t,
+        1.5,
+        lk,
+    )?;
+    let surfaces = vec![surface(
+        "inside",
+        "body",
+        [0.0, 0.0, t],
+        [w - 2.0 * t, d - 2.0 * t],
+        bh - t,
+    )];
     assemble(b, vec![(lid_link, lid_joint)], surfaces)
 }
 
@@ -441,7 +770,11 @@ fn shoe_rack(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
     let mut b = body(ctx);
     for sx in [-1.0, 1.0] {
-        b.add_box([sx * (w / 2.0 - 0.01), 0.0, h / 2.0], [0.02, d, h], ctx.color)?;
+        b.add_box(
+            [sx * (w / 2.0 - 0.01), 0.0, h / 2.0],
+            [0.02, d, h],
+            ctx.color,
+        )?;
     }
     let levels = ((h / 0.2).floor() as usize).clamp(2, 5);
     let mut surfaces = Vec::new();
@@ -449,9 +782,20 @@ fn shoe_rack(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         let z = 0.04 + i as f64 * (h - 0.06) / levels as f64;
         for k in 0..2 {
             let y = -d / 2.0 + 0.04 + k as f64 * (d - 0.08);
-            b.add_rod([-w / 2.0 + 0.02, y, z + 0.03 * k as f64], [w / 2.0 - 0.02, y, z + 0.03 * k as f64], 0.008, ctx.accent_color)?;
+            b.add_rod(
+                [-w / 2.0 + 0.02, y, z + 0.03 * k as f64],
+                [w / 2.0 - 0.02, y, z + 0.03 * k as f64],
+                0.008,
+                ctx.accent_color,
+            )?;
         }
-        surfaces.push(surface(&format!("shelf_{i}"), "body", [0.0, 0.0, z + 0.03], [w - 0.05, d - 0.04], (h - 0.06) / levels as f64 - 0.03));
+        surfaces.push(surface(
+            &format!("shelf_{i}"),
+            "body",
+            [0.0, 0.0, z + 0.03],
+            [w - 0.05, d - 0.04],
+            (h - 0.06) / levels as f64 - 0.03,
+        ));
     }
     b.add_box([0.0, 0.0, h - 0.01], [w, d, 0.02], ctx.color)?;
     surfaces.push(surface("top", "body", [0.0, 0.0, h], [w, d], 0.5));
@@ -467,11 +811,19 @@ fn shelf(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let plinth = 0.05_f64.min(h * 0.08);
     let mut b = body(ctx);
     for sx in [-1.0, 1.0] {
-        b.add_box([sx * (w / 2.0 - board / 2.0), 0.0, h / 2.0], [board, d, h], ctx.color)?;
+        b.add_box(
+            [sx * (w / 2.0 - board / 2.0), 0.0, h / 2.0],
+            [board, d, h],
+            ctx.color,
+        )?;
     }
     let inner_w = w - 2.0 * board;
     let back = 0.008;
-    b.add_box([0.0, -d / 2.0 + back / 2.0, h / 2.0], [inner_w, back, h], shade(ctx.color, 0.8))?;
+    b.add_box(
+        [0.0, -d / 2.0 + back / 2.0, h / 2.0],
+        [inner_w, back, h],
+        shade(ctx.color, 0.8),
+    )?;
     let board_d = d - back;
     let board_cy = -d / 2.0 + back + board_d / 2.0;
     let levels = match ctx.variant {
@@ -495,7 +847,11 @@ fn shelf(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
             ));
         }
     }
-    b.add_box([0.0, d / 2.0 - board / 2.0, plinth / 2.0], [inner_w, board, plinth], shade(ctx.color, 0.75))?;
+    b.add_box(
+        [0.0, d / 2.0 - board / 2.0, plinth / 2.0],
+        [inner_w, board, plinth],
+        shade(ctx.color, 0.75),
+    )?;
     surfaces.push(surface("top", "body", [0.0, 0.0, h], [w, d], 0.6));
     assemble(b, vec![], surfaces)
 }
@@ -507,7 +863,15 @@ fn shelving_unit(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let post = 0.03;
     for sx in [-1.0, 1.0] {
         for sy in [-1.0, 1.0] {
-            b.add_box([sx * (w / 2.0 - post / 2.0), sy * (d / 2.0 - post / 2.0), h / 2.0], [post, post, h], ctx.accent_color)?;
+            b.add_box(
+                [
+                    sx * (w / 2.0 - post / 2.0),
+                    sy * (d / 2.0 - post / 2.0),
+                    h / 2.0,
+                ],
+                [post, post, h],
+                ctx.accent_color,
+            )?;
         }
     }
     let levels = ((h / 0.4).floor() as usize).clamp(3, 6);
@@ -518,11 +882,25 @@ fn shelving_unit(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     for i in 0..levels {
         let z = bottom + pitch * i as f64;
         b.shell(Some(0.001));
-        b.add_box([0.0, 0.0, z + t / 2.0], [w - 2.0 * post + 0.002, d - 0.004, t], ctx.color)?;
+        b.add_box(
+            [0.0, 0.0, z + t / 2.0],
+            [w - 2.0 * post + 0.002, d - 0.004, t],
+            ctx.color,
+        )?;
         b.shell(None);
         let clearance = if i + 1 < levels { pitch - t } else { 0.6 };
-        let id = if i + 1 < levels { format!("shelf_{i}") } else { "top".to_string() };
-        surfaces.push(surface(&id, "body", [0.0, 0.0, z + t], [w - 2.0 * post, d - 0.004], clearance));
+        let id = if i + 1 < levels {
+            format!("shelf_{i}")
+        } else {
+            "top".to_string()
+        };
+        surfaces.push(surface(
+            &id,
+            "body",
+            [0.0, 0.0, z + t],
+            [w - 2.0 * post, d - 0.004],
+            clearance,
+        ));
     }
     assemble(b, vec![], surfaces)
 }
@@ -544,15 +922,48 @@ fn server_rack(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         let units = if k % 3 == 0 { 2.0 } else { 1.0 };
         let hh = units * unit - 0.004;
         b.shell(Some(0.0015));
-        b.add_box([0.0, c.y_front - 0.02 - ed / 2.0, z + hh / 2.0], [ew, ed, hh], [0.08, 0.08, 0.09])?;
+        b.add_box(
+            [0.0, c.y_front - 0.02 - ed / 2.0, z + hh / 2.0],
+            [ew, ed, hh],
+            [0.08, 0.08, 0.09],
+        )?;
         b.shell(None);
-        b.add_detail([ew * 0.3, c.y_front - 0.019, z + hh / 2.0], [0.08, 0.002, 0.006], if k % 2 == 0 { [0.1, 0.8, 0.2] } else { [0.2, 0.4, 0.9] });
+        b.add_detail(
+            [ew * 0.3, c.y_front - 0.019, z + hh / 2.0],
+            [0.08, 0.002, 0.006],
+            if k % 2 == 0 {
+                [0.1, 0.8, 0.2]
+            } else {
+                [0.2, 0.4, 0.9]
+            },
+        );
         z += units * unit + 0.015;
         k += 1;
     }
-    let lk = Look { material: ctx.material, front: [0.05, 0.05, 0.06], inner: BLACK, handle: METAL };
-    let o = Opening { x0: c.x0, x1: c.x1, z0: c.z0, z1: c.z1 };
-    let parts = vec![door("door", "body", o, c.y_front, PANEL / 2.0 - 0.002, FRONT, Hinge::Left, 1.75, true, lk)?];
+    let lk = Look {
+        material: ctx.material,
+        front: [0.05, 0.05, 0.06],
+        inner: BLACK,
+        handle: METAL,
+    };
+    let o = Opening {
+        x0: c.x0,
+        x1: c.x1,
+        z0: c.z0,
+        z1: c.z1,
+    };
+    let parts = vec![door(
+        "door",
+        "body",
+        o,
+        c.y_front,
+        PANEL / 2.0 - 0.002,
+        FRONT,
+        Hinge::Left,
+        1.75,
+        true,
+        lk,
+    )?];
     let surfaces = vec![c.top_surface(w, d, h, 0.3)];
     assemble(b, parts, surfaces)
 }

@@ -16,7 +16,10 @@ fn check_frame(cat: &str, asset: &Asset, want: [f64; 3]) -> Result<(), String> {
     let (lo, hi, ext) = extents(asset);
     for i in 0..3 {
         if (ext[i] - want[i]).abs() > 0.1 * want[i] + 0.004 {
-            return Err(format!("axis {i} extent {:.4} vs requested {:.4}", ext[i], want[i]));
+            return Err(format!(
+                "axis {i} extent {:.4} vs requested {:.4}",
+                ext[i], want[i]
+            ));
         }
     }
     if (lo[0] + hi[0]).abs() > 0.02 + 0.05 * want[0] {
@@ -53,7 +56,11 @@ fn check_frame(cat: &str, asset: &Asset, want: [f64; 3]) -> Result<(), String> {
 fn there_are_enough_categories_in_every_class() {
     let cats = categories();
     assert!(cats.len() >= 120, "{} categories", cats.len());
-    let count = |s: SupportClass| cats.iter().filter(|c| prior(c).unwrap().support == s).count();
+    let count = |s: SupportClass| {
+        cats.iter()
+            .filter(|c| prior(c).unwrap().support == s)
+            .count()
+    };
     assert!(count(SupportClass::Floor) >= 50);
     assert!(count(SupportClass::Wall) >= 13);
     assert!(count(SupportClass::Ceiling) >= 5);
@@ -61,13 +68,24 @@ fn there_are_enough_categories_in_every_class() {
     for c in &cats {
         let p = prior(c).unwrap();
         for i in 0..3 {
-            assert!(p.min[i] > 0.0 && p.min[i] <= p.typical[i] && p.typical[i] <= p.max[i], "{c}: prior axis {i}");
+            assert!(
+                p.min[i] > 0.0 && p.min[i] <= p.typical[i] && p.typical[i] <= p.max[i],
+                "{c}: prior axis {i}"
+            );
         }
-        assert!(material::material(&p.material).is_some(), "{c}: material {}", p.material);
+        assert!(
+            material::material(&p.material).is_some(),
+            "{c}: material {}",
+            p.material
+        );
         if let Some(a) = &p.accent {
             assert!(material::material(a).is_some(), "{c}: accent {a}");
         }
-        assert!(generator(&p.generator).is_some(), "{c}: generator {}", p.generator);
+        assert!(
+            generator(&p.generator).is_some(),
+            "{c}: generator {}",
+            p.generator
+        );
     }
 }
 
@@ -84,13 +102,18 @@ fn check_category(cat: &str) -> Result<(), String> {
             return Err(format!("{n} collision pieces"));
         }
         for link in &asset.links {
-            link.mass.validate().map_err(|e| format!("{}: {e}", link.name))?;
+            link.mass
+                .validate()
+                .map_err(|e| format!("{}: {e}", link.name))?;
             if link.collisions.iter().any(|c| c.volume() <= 0.0) {
                 return Err("empty piece".into());
             }
         }
         let range = &asset.provenance["physics"]["mass_range_kg"];
-        let (lo, hi) = (range[0].as_f64().unwrap_or(0.0), range[1].as_f64().unwrap_or(0.0));
+        let (lo, hi) = (
+            range[0].as_f64().unwrap_or(0.0),
+            range[1].as_f64().unwrap_or(0.0),
+        );
         if !(lo < asset.mass() && asset.mass() < hi) {
             return Err("mass outside its range".into());
         }
@@ -104,7 +127,12 @@ fn every_category_builds_a_valid_asset_at_typical_min_and_max_size() {
         .into_iter()
         .filter_map(|c| check_category(c).err().map(|e| format!("{c}: {e}")))
         .collect();
-    assert!(failures.is_empty(), "{} failing categories:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} failing categories:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
 
 #[test]
@@ -141,7 +169,10 @@ fn articulated_parts_never_touch_their_bodies() {
         let p = prior(cat).unwrap();
         let asset = build(&AssetRequest::new(cat, 3)).unwrap();
         if p.kind == Kind::Articulated {
-            assert!(!asset.joints.is_empty(), "{cat} is articulated but has no joints");
+            assert!(
+                !asset.joints.is_empty(),
+                "{cat} is articulated but has no joints"
+            );
         }
         if asset.joints.is_empty() {
             continue;
@@ -149,7 +180,11 @@ fn articulated_parts_never_touch_their_bodies() {
         articulated += 1;
         assert_eq!(asset.provenance["strategy"], "articulated", "{cat}");
         for j in &asset.joints {
-            assert!(j.lower < j.upper && j.damping > 0.0 && j.effort > 0.0, "{cat}: {}", j.name);
+            assert!(
+                j.lower < j.upper && j.damping > 0.0 && j.effort > 0.0,
+                "{cat}: {}",
+                j.name
+            );
         }
         for q in check_configurations(&asset) {
             let hits = self_collisions(&asset, &q, 5e-4);
@@ -166,32 +201,68 @@ fn articulated_parts_never_touch_their_bodies() {
 #[test]
 fn drawers_are_open_boxes_with_a_surface_inside() {
     let asset = build(&AssetRequest::new("dresser", 4)).unwrap();
-    let drawers: Vec<_> = asset.links.iter().filter(|l| l.name.starts_with("drawer_")).collect();
+    let drawers: Vec<_> = asset
+        .links
+        .iter()
+        .filter(|l| l.name.starts_with("drawer_"))
+        .collect();
     assert!(drawers.len() >= 3);
     for d in drawers {
         // Front, bottom, two sides, back: five boxes (plus the handle).
         assert!(d.collisions.len() >= 5, "{}", d.name);
-        let s = asset.surfaces.iter().find(|s| s.id == d.name).expect("drawer surface");
-        assert!(s.clearance > 0.05 && s.size[0] > 0.2 && s.size[1] > 0.2, "{s:?}");
+        let s = asset
+            .surfaces
+            .iter()
+            .find(|s| s.id == d.name)
+            .expect("drawer surface");
+        assert!(
+            s.clearance > 0.05 && s.size[0] > 0.2 && s.size[1] > 0.2,
+            "{s:?}"
+        );
     }
-    let j = asset.joints.iter().find(|j| j.kind == crate::assets::JointKind::Prismatic).unwrap();
+    let j = asset
+        .joints
+        .iter()
+        .find(|j| j.kind == crate::assets::JointKind::Prismatic)
+        .unwrap();
     assert_eq!(j.axis, [0.0, 1.0, 0.0]);
     assert!(j.upper > 0.2);
 }
 
 #[test]
 fn vessels_have_cavities() {
-    for cat in ["mug", "bowl", "cup", "glass", "pot", "basket", "storage_bin", "trash_can", "vase", "bathtub", "serving_bowl"] {
+    for cat in [
+        "mug",
+        "bowl",
+        "cup",
+        "glass",
+        "pot",
+        "basket",
+        "storage_bin",
+        "trash_can",
+        "vase",
+        "bathtub",
+        "serving_bowl",
+    ] {
         let a = build(&AssetRequest::new(cat, 3)).unwrap();
-        let inside = a.surfaces.iter().find(|s| s.id == "inside" || s.id == "basin");
+        let inside = a
+            .surfaces
+            .iter()
+            .find(|s| s.id == "inside" || s.id == "basin");
         let s = inside.unwrap_or_else(|| panic!("{cat}: no inside surface"));
-        assert!(prior(cat).unwrap().container, "{cat} is not marked container");
+        assert!(
+            prior(cat).unwrap().container,
+            "{cat} is not marked container"
+        );
         // A point just above the inside floor is outside every collision piece.
         let p = nalgebra::Point3::new(s.center[0], s.center[1], s.center[2] + 0.3 * s.clearance);
         for piece in &a.links[0].collisions {
             let shape = piece.to_parry().unwrap();
             use parry3d_f64::query::PointQuery;
-            let inside_piece = shape.contains_point(&parry3d_f64::math::Pose::identity(), parry3d_f64::math::Vector::new(p.x, p.y, p.z));
+            let inside_piece = shape.contains_point(
+                &parry3d_f64::math::Pose::identity(),
+                parry3d_f64::math::Vector::new(p.x, p.y, p.z),
+            );
             assert!(!inside_piece, "{cat}: cavity is filled");
         }
     }
@@ -199,12 +270,28 @@ fn vessels_have_cavities() {
 
 #[test]
 fn shelves_keep_clearance_between_levels() {
-    for cat in ["bookshelf", "shelf", "shelving_unit", "display_case", "cabinet", "refrigerator"] {
+    for cat in [
+        "bookshelf",
+        "shelf",
+        "shelving_unit",
+        "display_case",
+        "cabinet",
+        "refrigerator",
+    ] {
         let a = build(&AssetRequest::new(cat, 2)).unwrap();
-        let shelves: Vec<_> = a.surfaces.iter().filter(|s| s.id.starts_with("shelf_")).collect();
+        let shelves: Vec<_> = a
+            .surfaces
+            .iter()
+            .filter(|s| s.id.starts_with("shelf_"))
+            .collect();
         assert!(shelves.len() >= 2, "{cat}");
         for s in shelves {
-            assert!(s.clearance > 0.15, "{cat}/{}: clearance {}", s.id, s.clearance);
+            assert!(
+                s.clearance > 0.15,
+                "{cat}/{}: clearance {}",
+                s.id,
+                s.clearance
+            );
         }
     }
 }
@@ -227,7 +314,10 @@ fn aliases_and_unknown_nouns() {
     assert_eq!(resolve_category("fridge"), Some("refrigerator"));
     assert!(candidate_categories("clock").contains(&"wall_clock"));
     assert!(candidate_categories("clock").contains(&"table_clock"));
-    assert!(matches!(build(&AssetRequest::new("spaceship", 1)), Err(AssetError::UnknownCategory(_))));
+    assert!(matches!(
+        build(&AssetRequest::new("spaceship", 1)),
+        Err(AssetError::UnknownCategory(_))
+    ));
 }
 
 #[test]
@@ -252,7 +342,11 @@ fn cabinet_door_is_articulated() {
 #[test]
 fn styles_change_materials_and_look() {
     let plain = build(&AssetRequest::new("desk", 1)).unwrap();
-    let steam = build_styled(&AssetRequest::new("desk", 1), crate::assets::attributes::style("steampunk").as_ref()).unwrap();
+    let steam = build_styled(
+        &AssetRequest::new("desk", 1),
+        crate::assets::attributes::style("steampunk").as_ref(),
+    )
+    .unwrap();
     assert_ne!(plain.id, steam.id);
     assert_eq!(steam.material, "walnut");
     assert_eq!(steam.provenance["parameters"]["style"], "steampunk");
@@ -260,7 +354,12 @@ fn styles_change_materials_and_look() {
 
 #[test]
 fn generic_shapes_are_marked() {
-    for s in [SupportClass::Floor, SupportClass::Surface, SupportClass::Wall, SupportClass::Ceiling] {
+    for s in [
+        SupportClass::Floor,
+        SupportClass::Surface,
+        SupportClass::Wall,
+        SupportClass::Ceiling,
+    ] {
         let a = build_generic("flux capacitor", s, None, 1, None, None).unwrap();
         assert_eq!(a.provenance["generic"], true);
         assert_eq!(a.category, "flux_capacitor");

@@ -1,0 +1,897 @@
+//! The asset router: every placement stage asks it for objects in plain words.
+//!
+//! `route(&RouteRequest, &RouterContext) -> Result<Routed, RouteError>` takes the designer's
+//! description ("red oak dining table", "a bowl with 6 apples and oranges"), an optional
+//! category, an optional target size, the stage asking (furniture, wall, ceiling,
+//! manipuland) and a seed, and
+//!
+//! 1. **filters by stage**: each stage places one support class (furniture: floor; wall: wall;
+//!    ceiling: ceiling; manipuland: furniture surfaces). A noun that means different things
+//!    ("clock", "tv", "plant") resolves to the category the stage can place; a request no
+//!    category of the stage fits is refused with a reason the designer can act on;
+//! 2. **splits composites**: "fruit bowl" becomes a bowl plus fruits (built now, role
+//!    `inside`), "desk with a monitor" a desk now plus a monitor deferred to the manipuland
+//!    stage, "dining table and four chairs" a table plus chairs (`around`);
+//! 3. **chooses a strategy**: `procedural` (the embedded generators), `articulated` (a
+//!    procedural model with joints, or a model from the user's SDF/URDF library when one
+//!    matches), `thin_covering` (rugs, posters, tablecloths), `external` (a local mesh folder
+//!    or an HTTP text-to-3D backend, for nouns the library does not know), and a `generic`
+//!    stand-in from the support class when nothing knows the noun — always reported in
+//!    `notes`, never silent;
+//! 4. **validates** every asset: dimensions within 10 % of the requested size, watertight
+//!    visual (or a recorded reason), physically valid inertia, the hull budget of its class;
+//!    retries with other seeds or the next strategy, and reports every attempt on failure;
+//! 5. **caches**: results are content-addressed (request + generator version + seed), in
+//!    memory and in the context's disk cache, so a repeated request costs a hash and a map
+//!    look-up.
+//!
+//! The router does not place anything: poses, support surfaces and counts are the stage's
+//! job (`Routed` says how many of each and how the parts relate).
+
+pub mod parse;
+
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use super::articulated::library::ArticulatedLibrary;
+use super::attributes::Attributes;
+use super::cache::AssetCache;
+use super::external::{HttpBackend, MeshFolder};
+use super::procedural::{self, AssetRequest, Kind, SupportClass};
+use super::{Asset, physical};
+
+/// The placement stage asking.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Stage {
+    /// Floor-standing furniture (and rugs).
+    Furniture,
+    /// Objects mounted on walls.
+    Wall,
+    /// Objects hanging from the ceiling.
+    Ceiling,
+    /// Small objects on furniture surfaces.
+    Manipuland,
+}
+
+impl Stage {
+    /// The support class this stage places.
+    pub fn support(self) -> SupportClass {
+        match self {
+            Stage::Furniture => SupportClass::Floor,
+            Stage::Wall => SupportClass::Wall,
+            Stage::Ceiling => SupportClass::Ceiling,
+            Stage::Manipuland => SupportClass::Surface,
+        }
+    }
+
+    /// The stage that places a support class.
+    pub fn for_support(support: SupportClass) -> Stage {
+        match support {
+            SupportClass::Floor => Stage::Furniture,
+            SupportClass::Wall => Stage::Wall,
+            SupportClass::Ceiling => Stage::Ceiling,
+            SupportClass::Surface => Stage::Manipuland,
+        }
+    }
+
+    /// `furniture`, `wall`, `ceiling`, `manipuland`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Stage::Furniture => "furniture",
+            Stage::Wall => "wall",
+            Stage::Ceiling => "ceiling",
+            Stage::Manipuland => "manipuland",
+        }
+    }
+
+    fn hint(self) -> &'static str {
+        match self {
+            Stage::Manipuland => " (on a table, shelf or counter)",
+            Stage::Wall => " (mounted on a wall)",
+            Stage::Ceiling => " (hung from the ceiling)",
+            Stage::Furniture => " (standing on the floor)",
+        }
+    }
+
+    fn where_it_goes(self) -> &'static str {
+        match self {
+            Stage::Furniture => "stands on the floor",
+            Stage::Wall => "is mounted on a wall",
+            Stage::Ceiling => "hangs from the ceiling",
+            Stage::Manipuland => "rests on furniture surfaces (tables, shelves, counters)",
+        }
+    }
+}
+
+/// How an asset was made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Strategy {
+    /// Embedded parametric generator.
+    Procedural,
+    /// Model with joints (procedural or from the user's articulated library).
+    Articulated,
+    /// Thin textured covering.
+    ThinCovering,
+    /// Imported from a mesh folder or generated by a text-to-3D backend.
+    External,
+    /// Generic stand-in shape for an unknown noun.
+    Generic,
+}
+
+/// What to route.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RouteRequest {
+    /// The designer's words, e.g. "a small red ceramic bowl with 6 apples and oranges".
+    pub description: String,
+    /// A category or alias to use instead of the noun in the description.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub category: Option<String>,
+    /// Target size (x, y, z), metres.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<[f64; 3]>,
+    /// The stage asking.
+    pub stage: Stage,
+    /// Seed for every random choice.
+    pub seed: u64,
+}
+
+impl RouteRequest {
+    /// A request from a description at a stage.
+    pub fn new(description: &str, stage: Stage, seed: u64) -> RouteRequest {
+        RouteRequest {
+            description: description.to_string(),
+            category: None,
+            size: None,
+            stage,
+            seed,
+        }
+    }
+}
+
+/// How a part relates to the main object.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Role {
+    /// The object asked for.
+    Primary,
+    /// Inside the main object's cavity (`inside`, `basin`, drawers, shelves).
+    Inside,
+    /// On the main object's top surface.
+    On,
+    /// Next to the main object on the floor (chairs around a table).
+    Around,
+}
+
+impl Role {
+    fn from_word(word: &str, container: bool) -> Role {
+        match word {
+            "inside" | "filled with" | "full of" | "containing" | "holding" | "carrying" => {
+                if container {
+                    Role::Inside
+                } else {
+                    Role::On
+                }
+            }
+            "on" | "topped with" | "displaying" => Role::On,
+            "around" | "and" => Role::Around,
+            _ if container => Role::Inside,
+            _ => Role::On,
+        }
+    }
+}
+
+/// One built asset of a routing result.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoutedAsset {
+    /// The asset (shared: cache hits hand out the same one).
+    pub asset: Arc<Asset>,
+    /// Its category (the noun for generic stand-ins).
+    pub category: String,
+    /// How it was made.
+    pub strategy: Strategy,
+    /// How many instances the request wants.
+    pub count: u32,
+    /// How it relates to the main object.
+    pub role: Role,
+}
+
+/// A part the current stage cannot place, for a later stage.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DeferredRequest {
+    /// The request to make at that stage (its `stage` says which).
+    pub request: RouteRequest,
+    /// How many.
+    pub count: u32,
+    /// Where it goes relative to the main object.
+    pub relation: Role,
+}
+
+/// What a request routed to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Routed {
+    /// The object asked for.
+    pub primary: RoutedAsset,
+    /// Parts built now (contents of a container, things on it, chairs around a table).
+    pub parts: Vec<RoutedAsset>,
+    /// Parts for later stages.
+    pub deferred: Vec<DeferredRequest>,
+    /// What the caller should know: generic stand-ins, clamped sizes, fallbacks, retries.
+    pub notes: Vec<String>,
+    /// Colour, material, style and size words read from the request.
+    pub attributes: Attributes,
+    /// Whether the whole result came from the cache.
+    pub cached: bool,
+}
+
+/// Why a request could not be routed; messages are written for the designer (an LLM or the
+/// rule-based designer) to act on.
+#[derive(Debug, thiserror::Error)]
+pub enum RouteError {
+    /// The description names nothing.
+    #[error("the request is empty: describe one object, e.g. \"a wooden chair\"")]
+    Empty,
+    /// The object belongs to another stage.
+    #[error(
+        "cannot place \"{noun}\" at the {} stage: a {category} {}. Ask for it at the {} stage{}, or ask for something that {} here.",
+        .stage.as_str(), .suggested.where_it_goes(), .suggested.as_str(), .suggested.hint(), .stage.where_it_goes()
+    )]
+    WrongStage {
+        /// The noun as read.
+        noun: String,
+        /// The category it names.
+        category: String,
+        /// The stage that asked.
+        stage: Stage,
+        /// The stage that places it.
+        suggested: Stage,
+    },
+    /// The requested size is not a size.
+    #[error("size {0:?} is not valid: give width, depth and height in metres, all positive")]
+    BadSize([f64; 3]),
+    /// Every attempt failed validation.
+    #[error("could not make \"{description}\" ({category}): {}", attempts.join("; "))]
+    Failed {
+        /// The request.
+        description: String,
+        /// The category tried.
+        category: String,
+        /// What went wrong on each attempt, with what to change.
+        attempts: Vec<String>,
+    },
+}
+
+/// What the router may use besides the embedded generators.
+#[derive(Debug, Default)]
+pub struct RouterContext {
+    /// Built assets and routing results.
+    pub cache: AssetCache,
+    /// User folder of articulated SDF/URDF models with a JSON index.
+    pub library: Option<ArticulatedLibrary>,
+    /// User folder of meshes (OBJ, glTF, GLB) with a JSON index.
+    pub mesh_folder: Option<MeshFolder>,
+    /// HTTP text-to-3D backend.
+    pub backend: Option<HttpBackend>,
+    /// Use the external sources before the embedded generators for known categories too.
+    pub prefer_external: bool,
+    /// Attempts per asset before giving up (other seeds, then other strategies).
+    pub max_attempts: usize,
+}
+
+impl RouterContext {
+    /// Embedded generators only, memory cache.
+    pub fn new() -> RouterContext {
+        RouterContext {
+            max_attempts: 3,
+            ..Default::default()
+        }
+    }
+
+    /// From the environment: `SCENESMITH_ASSET_CACHE` (disk cache; default
+    /// `~/.cache/scenesmith/assets`, `off` for memory only), `SCENESMITH_ARTICULATED_DIR`,
+    /// `SCENESMITH_MESH_DIR`, `SCENESMITH_TEXT_TO_3D_URL` (+ `SCENESMITH_TEXT_TO_3D_TIMEOUT`
+    /// seconds). Sources that fail to open are skipped with a warning.
+    pub fn from_env() -> RouterContext {
+        let mut ctx = RouterContext::new();
+        let off = std::env::var("SCENESMITH_ASSET_CACHE").is_ok_and(|v| v == "off");
+        if !off && let Some(dir) = AssetCache::default_dir() {
+            ctx.cache = AssetCache::on_disk(&dir);
+        }
+        if let Some(dir) = std::env::var_os("SCENESMITH_ARTICULATED_DIR") {
+            match ArticulatedLibrary::open(std::path::Path::new(&dir)) {
+                Ok(l) => ctx.library = Some(l),
+                Err(e) => tracing::warn!("articulated library not used: {e}"),
+            }
+        }
+        if let Some(dir) = std::env::var_os("SCENESMITH_MESH_DIR") {
+            match MeshFolder::open(std::path::Path::new(&dir)) {
+                Ok(f) => ctx.mesh_folder = Some(f),
+                Err(e) => tracing::warn!("mesh folder not used: {e}"),
+            }
+        }
+        if let Ok(url) = std::env::var("SCENESMITH_TEXT_TO_3D_URL") {
+            let secs = std::env::var("SCENESMITH_TEXT_TO_3D_TIMEOUT")
+                .ok()
+                .and_then(|s| s.parse::<f64>().ok())
+                .unwrap_or(120.0);
+            ctx.backend = Some(HttpBackend::new(
+                &url,
+                std::time::Duration::from_secs_f64(secs),
+            ));
+        }
+        ctx
+    }
+
+    fn fingerprint(&self) -> serde_json::Value {
+        serde_json::json!({
+            "library": self.library.as_ref().map(|l| l.fingerprint()),
+            "mesh_folder": self.mesh_folder.as_ref().map(|f| f.fingerprint()),
+            "backend": self.backend.as_ref().map(|b| b.url().to_string()),
+            "prefer_external": self.prefer_external,
+        })
+    }
+}
+
+/// A routing result as stored in the cache: asset ids instead of assets.
+#[derive(Serialize, Deserialize)]
+struct RoutedRecord {
+    primary: PartRecord,
+    parts: Vec<PartRecord>,
+    deferred: Vec<DeferredRequest>,
+    notes: Vec<String>,
+}
+
+#[derive(Serialize, Deserialize)]
+struct PartRecord {
+    id: String,
+    category: String,
+    strategy: Strategy,
+    count: u32,
+    role: Role,
+}
+
+fn key_of(request: &RouteRequest, ctx: &RouterContext) -> String {
+    let key = serde_json::json!({
+        "description": super::attributes::normalize(&request.description).trim(),
+        "category": request.category,
+        "size": request.size.map(|s| s.map(|v| (v * 1e4).round() / 1e4)),
+        "stage": request.stage,
+        "seed": request.seed,
+        "generator_version": procedural::GENERATOR_VERSION,
+        "sources": ctx.fingerprint(),
+    });
+    blake3::hash(key.to_string().as_bytes()).to_hex()[..32].to_string()
+}
+
+/// Routes one request (see the module docs).
+pub fn route(request: &RouteRequest, ctx: &RouterContext) -> Result<Routed, RouteError> {
+    if let Some(s) = request.size
+        && s.iter().any(|v| !(v.is_finite() && *v > 0.0))
+    {
+        return Err(RouteError::BadSize(s));
+    }
+    let key = key_of(request, ctx);
+    if let Some(hit) = cached_route(&key, request, ctx) {
+        return Ok(hit);
+    }
+    let routed = route_uncached(request, ctx)?;
+    let record = RoutedRecord {
+        primary: part_record(&routed.primary),
+        parts: routed.parts.iter().map(part_record).collect(),
+        deferred: routed.deferred.clone(),
+        notes: routed.notes.clone(),
+    };
+    if let Ok(v) = serde_json::to_value(&record) {
+        ctx.cache.put_route(&key, v);
+    }
+    Ok(routed)
+}
+
+fn part_record(p: &RoutedAsset) -> PartRecord {
+    PartRecord {
+        id: p.asset.id.clone(),
+        category: p.category.clone(),
+        strategy: p.strategy,
+        count: p.count,
+        role: p.role,
+    }
+}
+
+fn cached_route(key: &str, request: &RouteRequest, ctx: &RouterContext) -> Option<Routed> {
+    let record: RoutedRecord = serde_json::from_value(ctx.cache.get_route(key)?).ok()?;
+    let load = |p: &PartRecord| -> Option<RoutedAsset> {
+        Some(RoutedAsset {
+            asset: ctx.cache.get(&p.id)?,
+            category: p.category.clone(),
+            strategy: p.strategy,
+            count: p.count,
+            role: p.role,
+        })
+    };
+    let primary = load(&record.primary)?;
+    let parts = record.parts.iter().map(load).collect::<Option<Vec<_>>>()?;
+    let attributes = parse::parse(&request.description).main.attributes;
+    Some(Routed {
+        primary,
+        parts,
+        deferred: record.deferred,
+        notes: record.notes,
+        attributes,
+        cached: true,
+    })
+}
+
+/// The category a phrase names at a stage, or the reason it cannot be placed there.
+fn pick_category(phrase: &parse::Phrase, stage: Stage) -> Result<Option<&'static str>, RouteError> {
+    if phrase.categories.is_empty() {
+        return Ok(None);
+    }
+    let support_of = |c: &str| procedural::prior(c).map(|p| p.support);
+    if let Some(c) = phrase
+        .categories
+        .iter()
+        .find(|c| support_of(c) == Some(stage.support()))
+    {
+        return Ok(Some(c));
+    }
+    let first = phrase.categories[0];
+    let support = support_of(first).unwrap_or(SupportClass::Floor);
+    Err(RouteError::WrongStage {
+        noun: phrase.noun.clone().unwrap_or_default(),
+        category: first.replace('_', " "),
+        stage,
+        suggested: Stage::for_support(support),
+    })
+}
+
+/// The size to ask a generator for: the request's, else the typical size scaled by size words.
+fn wanted_size(
+    category: &str,
+    request_size: Option<[f64; 3]>,
+    attrs: &Attributes,
+) -> Option<[f64; 3]> {
+    if request_size.is_some() {
+        return request_size;
+    }
+    if (attrs.size_scale - 1.0).abs() < 1e-9 {
+        return None;
+    }
+    procedural::prior(category)
+        .map(|p| [0, 1, 2].map(|i| (p.typical[i] * attrs.size_scale).clamp(p.min[i], p.max[i])))
+}
+
+/// Checks a built asset against the request: physics, hull budget, size, watertightness.
+fn validate(asset: &Asset, support: SupportClass, size: Option<[f64; 3]>) -> Result<(), String> {
+    physical::check(asset, support).map_err(|e| e.to_string())?;
+    if let Some(want) = size {
+        let [lo, hi] = asset.bounds();
+        for i in 0..3 {
+            let got = hi[i] - lo[i];
+            if (got - want[i]).abs() > 0.1 * want[i] + 0.002 {
+                let axis = ["width", "depth", "height"][i];
+                return Err(format!(
+                    "{axis} came out {got:.3} m for a requested {:.3} m",
+                    want[i]
+                ));
+            }
+        }
+    }
+    let summary = physical::summarize(asset, support);
+    let reason = asset
+        .provenance
+        .get("open_visual_reason")
+        .and_then(|r| r.as_str());
+    if !summary.watertight && reason.is_none() {
+        return Err(format!(
+            "visual mesh is not closed ({}) and no reason was recorded",
+            summary.open_visuals.join(", ")
+        ));
+    }
+    Ok(())
+}
+
+fn size_feedback(category: &str, size: [f64; 3]) -> Option<String> {
+    let p = procedural::prior(category)?;
+    let out: Vec<String> = (0..3)
+        .filter(|&i| size[i] < p.min[i] * 0.9 || size[i] > p.max[i] * 1.1)
+        .map(|i| {
+            format!(
+                "{} {:.2} m is outside {:.2}-{:.2} m",
+                ["width", "depth", "height"][i],
+                size[i],
+                p.min[i],
+                p.max[i]
+            )
+        })
+        .collect();
+    (!out.is_empty()).then(|| {
+        format!(
+            "a {} cannot be that size ({}); ask for a size inside the range, e.g. the typical {:.2} x {:.2} x {:.2} m, or for another object",
+            category.replace('_', " "),
+            out.join(", "),
+            p.typical[0],
+            p.typical[1],
+            p.typical[2]
+        )
+    })
+}
+
+/// Builds one known category with retries; returns the asset and its strategy.
+fn build_known(
+    category: &'static str,
+    phrase: &parse::Phrase,
+    size: Option<[f64; 3]>,
+    seed: u64,
+    ctx: &RouterContext,
+    notes: &mut Vec<String>,
+) -> Result<(Arc<Asset>, Strategy), RouteError> {
+    let prior = procedural::prior(category).ok_or_else(|| RouteError::Failed {
+        description: phrase.text.clone(),
+        category: category.to_string(),
+        attempts: vec!["no prior for the category".into()],
+    })?;
+    let mut attempts = Vec::new();
+    if let Some(s) = size
+        && let Some(f) = size_feedback(category, s)
+    {
+        return Err(RouteError::Failed {
+            description: phrase.text.clone(),
+            category: category.to_string(),
+            attempts: vec![f],
+        });
+    }
+    // The user's articulated library first, for articulated categories.
+    if prior.kind == Kind::Articulated
+        && let Some(lib) = &ctx.library
+        && let Some(entry) = lib.best_match(&phrase.text, Some(category), size)
+    {
+        let target = size.or(Some(prior.typical));
+        match ctx
+            .cache
+            .get_or_build(&lib.asset_id(entry, target, seed), || {
+                lib.load(entry, target, seed)
+            }) {
+            Ok((asset, _)) => match validate(&asset, prior.support, size) {
+                Ok(()) => return Ok((asset, Strategy::Articulated)),
+                Err(e) => attempts.push(format!("library model {}: {e}", entry.file)),
+            },
+            Err(e) => attempts.push(format!("library model {}: {e}", entry.file)),
+        }
+    }
+    if ctx.prefer_external
+        && let Some(found) = build_external(
+            phrase,
+            category,
+            prior.support,
+            size.or(Some(prior.typical)),
+            seed,
+            ctx,
+            &mut attempts,
+        )
+    {
+        return Ok((found, Strategy::External));
+    }
+    let style = phrase.attributes.style.as_ref();
+    let tries = ctx.max_attempts.max(1);
+    for k in 0..tries as u64 {
+        let mut r = AssetRequest::new(category, seed.wrapping_add(k));
+        r.size = size;
+        r.material = phrase.attributes.material.clone();
+        r.color = phrase.attributes.color;
+        let id = match procedural::asset_id(&r, style) {
+            Ok(id) => id,
+            Err(e) => {
+                attempts.push(e.to_string());
+                continue;
+            }
+        };
+        match ctx
+            .cache
+            .get_or_build(&id, || procedural::build_styled(&r, style))
+        {
+            Ok((asset, _)) => match validate(&asset, prior.support, size) {
+                Ok(()) => {
+                    if k > 0 {
+                        notes.push(format!(
+                            "{category}: built with seed {} after {k} failed attempt(s): {}",
+                            r.seed,
+                            attempts.join("; ")
+                        ));
+                    }
+                    let strategy = match asset.provenance["strategy"].as_str() {
+                        Some("articulated") => Strategy::Articulated,
+                        Some("thin_covering") => Strategy::ThinCovering,
+                        _ => Strategy::Procedural,
+                    };
+                    return Ok((asset, strategy));
+                }
+                Err(e) => attempts.push(format!("seed {}: {e}", r.seed)),
+            },
+            Err(e) => attempts.push(format!("seed {}: {e}", r.seed)),
+        }
+    }
+    Err(RouteError::Failed {
+        description: phrase.text.clone(),
+        category: category.to_string(),
+        attempts,
+    })
+}
+
+/// Tries the mesh folder, then the HTTP backend; `None` when neither is configured or both
+/// failed (failures go to `attempts`).
+fn build_external(
+    phrase: &parse::Phrase,
+    noun: &str,
+    support: SupportClass,
+    size: Option<[f64; 3]>,
+    seed: u64,
+    ctx: &RouterContext,
+    attempts: &mut Vec<String>,
+) -> Option<Arc<Asset>> {
+    if let Some(folder) = &ctx.mesh_folder
+        && let Some(entry) = folder.best_match(&phrase.text, noun, size)
+    {
+        let id = folder.asset_id(entry, support, size);
+        match ctx
+            .cache
+            .get_or_build(&id, || folder.import(entry, support, size))
+        {
+            Ok((a, _)) => match validate(&a, support, size) {
+                Ok(()) => return Some(a),
+                Err(e) => attempts.push(format!("mesh folder {}: {e}", entry.file)),
+            },
+            Err(e) => attempts.push(format!("mesh folder {}: {e}", entry.file)),
+        }
+    }
+    if let Some(backend) = &ctx.backend {
+        let description = if phrase.text.is_empty() {
+            noun.to_string()
+        } else {
+            phrase.text.clone()
+        };
+        let id = backend.asset_id(&description, support, size, seed);
+        match ctx.cache.get_or_build(&id, || {
+            backend.generate_asset(&description, noun, support, size, seed)
+        }) {
+            Ok((a, _)) => match validate(&a, support, size) {
+                Ok(()) => return Some(a),
+                Err(e) => attempts.push(format!("text-to-3D backend: {e}")),
+            },
+            Err(e) => attempts.push(format!("text-to-3D backend: {e}")),
+        }
+    }
+    None
+}
+
+/// Builds whatever a phrase names at a support class: a known category, an external asset,
+/// or a generic stand-in (with a note).
+fn build_phrase(
+    phrase: &parse::Phrase,
+    category: Option<&'static str>,
+    support: SupportClass,
+    size: Option<[f64; 3]>,
+    seed: u64,
+    ctx: &RouterContext,
+    notes: &mut Vec<String>,
+) -> Result<(Arc<Asset>, String, Strategy), RouteError> {
+    if let Some(cat) = category {
+        let size = wanted_size(cat, size, &phrase.attributes);
+        let (a, s) = build_known(cat, phrase, size, seed, ctx, notes)?;
+        return Ok((a, cat.to_string(), s));
+    }
+    let noun = phrase
+        .unknown_noun
+        .clone()
+        .or_else(|| phrase.noun.clone())
+        .ok_or(RouteError::Empty)?;
+    let mut attempts = Vec::new();
+    if let Some(a) = build_external(phrase, &noun, support, size, seed, ctx, &mut attempts) {
+        notes.push(format!(
+            "\"{noun}\" is not in the procedural library; imported it from an external source ({})",
+            a.provenance["source"].as_str().unwrap_or("external")
+        ));
+        return Ok((a, crate::scene::sanitize_name(&noun), Strategy::External));
+    }
+    let a = procedural::build_generic(
+        &noun,
+        support,
+        size,
+        seed,
+        phrase.attributes.material.as_deref(),
+        phrase.attributes.color,
+    )
+    .map_err(|e| RouteError::Failed {
+        description: phrase.text.clone(),
+        category: noun.clone(),
+        attempts: vec![e.to_string()],
+    })?;
+    let [lo, hi] = a.bounds();
+    let mut note = format!(
+        "generic: no generator knows \"{noun}\"; built a generic {} shape {:.2} x {:.2} x {:.2} m as a stand-in (provenance marks it generic)",
+        support.as_str(),
+        hi[0] - lo[0],
+        hi[1] - lo[1],
+        hi[2] - lo[2]
+    );
+    if !attempts.is_empty() {
+        note.push_str(&format!(
+            "; external sources failed: {}",
+            attempts.join("; ")
+        ));
+    }
+    notes.push(note);
+    let a = Arc::new(a);
+    ctx.cache.put(a.clone());
+    Ok((a, crate::scene::sanitize_name(&noun), Strategy::Generic))
+}
+
+fn route_uncached(request: &RouteRequest, ctx: &RouterContext) -> Result<Routed, RouteError> {
+    let text = request.description.trim();
+    if text.is_empty() && request.category.is_none() {
+        return Err(RouteError::Empty);
+    }
+    let parsed = parse::parse(text);
+    let mut main = parsed.main.clone();
+    if let Some(cat) = &request.category {
+        let p = parse::phrase(cat);
+        if p.categories.is_empty() {
+            main.unknown_noun = Some(cat.clone());
+            main.categories.clear();
+            main.noun = None;
+        } else {
+            main.categories = p.categories;
+            main.noun = p.noun;
+        }
+    }
+    let mut notes = Vec::new();
+    let mut parts_phrases: Vec<(parse::Phrase, Role)> = Vec::new();
+    // A compound noun names the container and default contents.
+    let mut compound_role = None;
+    if let Some((name, comp)) = &parsed.compound
+        && request.category.is_none()
+    {
+        if let Some(c) = procedural::resolve_category(&comp.container) {
+            main.categories = vec![c];
+            main.noun = Some(name.clone());
+        }
+        let container = procedural::prior(&comp.container).is_some_and(|p| p.container);
+        let role = Role::from_word(&comp.relation, container);
+        compound_role = Some(role);
+        if parsed.parts.is_empty() {
+            let n = main.count.unwrap_or(comp.count).max(1);
+            main.count = None;
+            let k = comp.contents.len().max(1) as u32;
+            for (i, c) in comp.contents.iter().enumerate() {
+                let share = n / k + u32::from((i as u32) < n % k);
+                if share == 0 {
+                    continue;
+                }
+                let mut p = parse::phrase(&c.replace('_', " "));
+                p.count = Some(share);
+                parts_phrases.push((p, role));
+            }
+        }
+    }
+    let category = pick_category(&main, request.stage)?;
+    if category.is_none() && main.unknown_noun.is_none() && main.group.is_empty() {
+        return Err(RouteError::Empty);
+    }
+    // A group word as the main noun ("some fruit"): build its first member.
+    let category = match (category, main.group.first()) {
+        (None, Some(g)) => procedural::resolve_category(g),
+        (c, _) => c,
+    };
+    let container = category
+        .and_then(procedural::prior)
+        .is_some_and(|p| p.container);
+    for (p, word) in &parsed.parts {
+        let role = compound_role.unwrap_or_else(|| Role::from_word(word, container));
+        parts_phrases.push((p.clone(), role));
+    }
+    let (asset, cat_name, strategy) = build_phrase(
+        &main,
+        category,
+        request.stage.support(),
+        request.size,
+        request.seed,
+        ctx,
+        &mut notes,
+    )?;
+    let primary = RoutedAsset {
+        asset,
+        category: cat_name.clone(),
+        strategy,
+        count: main.count.unwrap_or(1).max(1),
+        role: Role::Primary,
+    };
+    let mut parts = Vec::new();
+    let mut deferred = Vec::new();
+    for (i, (p, role)) in parts_phrases.iter().enumerate() {
+        // Group words ("fruits") expand to their members, sharing the count.
+        let members: Vec<(parse::Phrase, u32)> = if p.categories.is_empty() && !p.group.is_empty() {
+            let n = p.count.unwrap_or(3).max(1);
+            let k = p.group.len().min(n as usize).max(1);
+            p.group
+                .iter()
+                .take(k)
+                .enumerate()
+                .map(|(j, g)| {
+                    let mut q = parse::phrase(&g.replace('_', " "));
+                    q.attributes = p.attributes.clone();
+                    (q, n / k as u32 + u32::from((j as u32) < n % k as u32))
+                })
+                .collect()
+        } else {
+            vec![(
+                p.clone(),
+                p.count.unwrap_or(if p.plural { 3 } else { 1 }).max(1),
+            )]
+        };
+        for (j, (q, count)) in members.into_iter().enumerate() {
+            let support = q
+                .categories
+                .first()
+                .and_then(|c| procedural::prior(c))
+                .map(|p| p.support)
+                .unwrap_or(match role {
+                    Role::Around => SupportClass::Floor,
+                    _ => SupportClass::Surface,
+                });
+            let nested_now = match request.stage {
+                Stage::Furniture => support == SupportClass::Floor,
+                Stage::Manipuland => support == SupportClass::Surface,
+                Stage::Wall => support == SupportClass::Wall,
+                Stage::Ceiling => support == SupportClass::Ceiling,
+            };
+            let part_seed = request.seed.wrapping_add(1000 + 37 * i as u64 + j as u64);
+            if nested_now {
+                let stage = Stage::for_support(support);
+                let cat = pick_category(&q, stage).ok().flatten();
+                let (asset, name, strategy) =
+                    build_phrase(&q, cat, support, None, part_seed, ctx, &mut notes)?;
+                parts.push(RoutedAsset {
+                    asset,
+                    category: name,
+                    strategy,
+                    count,
+                    role: *role,
+                });
+            } else {
+                let stage = Stage::for_support(support);
+                let desc = if q.text.is_empty() {
+                    q.noun.clone().unwrap_or_default()
+                } else {
+                    q.text.clone()
+                };
+                notes.push(format!(
+                    "deferred: {count} x \"{desc}\" goes {} the {} at the {} stage",
+                    match role {
+                        Role::Inside => "inside",
+                        Role::Around => "around",
+                        _ => "on",
+                    },
+                    cat_name.replace('_', " "),
+                    stage.as_str()
+                ));
+                deferred.push(DeferredRequest {
+                    request: RouteRequest::new(&desc, stage, part_seed),
+                    count,
+                    relation: *role,
+                });
+            }
+        }
+    }
+    Ok(Routed {
+        primary,
+        parts,
+        deferred,
+        notes,
+        attributes: main.attributes,
+        cached: false,
+    })
+}
+
+#[cfg(test)]
+mod tests;
