@@ -23,22 +23,14 @@ pub fn self_collisions(
 ) -> Vec<(String, String, f64)> {
     use crate::physics::collision::penetration;
     let poses = link_poses(asset, joint_positions);
-    let shapes: Vec<Vec<_>> = asset
-        .links
-        .iter()
-        .map(|l| {
-            l.collisions
-                .iter()
-                .filter_map(|p| p.to_parry().ok())
-                .collect()
-        })
-        .collect();
+    let shapes: Vec<&Vec<crate::geometry::ConvexPiece>> =
+        asset.links.iter().map(|l| &l.collisions).collect();
     let mut out = Vec::new();
     for i in 0..asset.links.len() {
         for j in i + 1..asset.links.len() {
             let mut deepest = 0.0_f64;
-            for a in &shapes[i] {
-                for b in &shapes[j] {
+            for a in shapes[i] {
+                for b in shapes[j] {
                     if let Some(d) = penetration(a, &poses[i], b, &poses[j]) {
                         deepest = deepest.max(d);
                     }
