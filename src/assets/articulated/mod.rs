@@ -21,17 +21,22 @@ pub fn self_collisions(
     joint_positions: &BTreeMap<String, f64>,
     tolerance: f64,
 ) -> Vec<(String, String, f64)> {
-    use crate::physics::collision::penetration;
+    use crate::physics::collision::{PosedPiece, sat_penetration};
     let poses = link_poses(asset, joint_positions);
-    let shapes: Vec<&Vec<crate::geometry::ConvexPiece>> =
-        asset.links.iter().map(|l| &l.collisions).collect();
+    // Pose every piece once, then test pairs (the bounds test inside prunes most of them).
+    let posed: Vec<Vec<PosedPiece>> = asset
+        .links
+        .iter()
+        .zip(&poses)
+        .map(|(l, pose)| l.collisions.iter().map(|p| PosedPiece::new(p, pose)).collect())
+        .collect();
     let mut out = Vec::new();
-    for i in 0..asset.links.len() {
-        for j in i + 1..asset.links.len() {
+    for i in 0..posed.len() {
+        for j in i + 1..posed.len() {
             let mut deepest = 0.0_f64;
-            for a in shapes[i] {
-                for b in shapes[j] {
-                    if let Some(d) = penetration(a, &poses[i], b, &poses[j]) {
+            for a in &posed[i] {
+                for b in &posed[j] {
+                    if let Some((d, _)) = sat_penetration(a, b) {
                         deepest = deepest.max(d);
                     }
                 }
