@@ -28,7 +28,12 @@ pub fn self_collisions(
         .links
         .iter()
         .zip(&poses)
-        .map(|(l, pose)| l.collisions.iter().map(|p| PosedPiece::new(p, pose)).collect())
+        .map(|(l, pose)| {
+            l.collisions
+                .iter()
+                .map(|p| PosedPiece::new(p, pose))
+                .collect()
+        })
         .collect();
     let mut out = Vec::new();
     for i in 0..posed.len() {

@@ -658,20 +658,16 @@ fn rocking_chair(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     )
 }
 
-/// Bean bag: a squashed sack with a raised back.
+/// Bean bag: a squashed sack (flat where it sits on the floor) with a raised back.
 fn bean_bag(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
     let mut b = body(ctx);
     b.density(UPHOLSTERY);
     let low = h * 0.55;
-    b.add_ellipsoid(
-        [0.0, 0.03 * d, low / 2.0],
-        [w / 2.0, d / 2.0 * 0.94, low / 2.0],
-        ctx.color,
-    )?;
+    b.add_rounded_box([0.0, 0.0, low / 2.0], [w, d, low], low * 0.45, ctx.color)?;
     b.add_ellipsoid(
         [0.0, -d * 0.22, h * 0.55],
-        [w * 0.42, d * 0.28, h * 0.45],
+        [w * 0.42, d * 0.26, h * 0.45],
         shade(ctx.color, 0.95),
     )?;
     single(
