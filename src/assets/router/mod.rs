@@ -523,6 +523,7 @@ fn build_known(
     category: &'static str,
     phrase: &parse::Phrase,
     size: Option<[f64; 3]>,
+    explicit_size: Option<[f64; 3]>,
     seed: u64,
     ctx: &RouterContext,
     notes: &mut Vec<String>,
@@ -560,12 +561,13 @@ fn build_known(
             Err(e) => attempts.push(format!("library model {}: {e}", entry.file)),
         }
     }
+    // External models come at their own size unless the request gave one.
     if ctx.prefer_external
         && let Some(found) = build_external(
             phrase,
             category,
             prior.support,
-            size.or(Some(prior.typical)),
+            explicit_size,
             seed,
             ctx,
             &mut attempts,
@@ -677,8 +679,8 @@ fn build_phrase(
     notes: &mut Vec<String>,
 ) -> Result<(Arc<Asset>, String, Strategy), RouteError> {
     if let Some(cat) = category {
-        let size = wanted_size(cat, size, &phrase.attributes);
-        let (a, s) = build_known(cat, phrase, size, seed, ctx, notes)?;
+        let wanted = wanted_size(cat, size, &phrase.attributes);
+        let (a, s) = build_known(cat, phrase, wanted, size, seed, ctx, notes)?;
         return Ok((a, cat.to_string(), s));
     }
     let noun = phrase
