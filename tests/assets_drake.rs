@@ -98,7 +98,7 @@ fn every_category_loads_stands_and_opens_in_drake() {
         .filter_map(|(c, _)| {
             let m = &dropped["models"][c];
             let rot = m["rotation_rad"].as_f64().unwrap_or(f64::NAN);
-            (!(rot < 0.1) || m["vertical_m"].as_f64().unwrap_or(-1.0) < -0.05)
+            (rot.is_nan() || rot >= 0.1 || m["vertical_m"].as_f64().unwrap_or(-1.0) < -0.05)
                 .then(|| format!("{c}: {m}"))
         })
         .collect();
