@@ -26,7 +26,11 @@ fn tube(curve: impl Fn(f64) -> [f64; 3], n: usize, sides: usize, r: f64) -> TriM
         let t = i as f64 / n as f64;
         let c = p(t);
         let tangent = (p(t + 1e-4) - p(t - 1e-4)).normalize();
-        let helper = if tangent.z.abs() < 0.9 { Vector3::z() } else { Vector3::x() };
+        let helper = if tangent.z.abs() < 0.9 {
+            Vector3::z()
+        } else {
+            Vector3::x()
+        };
         let nrm = tangent.cross(&helper).normalize();
         let bin = tangent.cross(&nrm);
         for k in 0..sides {
@@ -82,7 +86,11 @@ fn merged_visual(category: &str) -> TriMesh {
 }
 
 fn main() {
-    let out = PathBuf::from(std::env::args().nth(1).unwrap_or_else(|| "target/bench_assets".into()));
+    let out = PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| "target/bench_assets".into()),
+    );
     std::fs::create_dir_all(&out).expect("output directory");
     let cats = procedural::categories();
 
@@ -129,16 +137,40 @@ fn main() {
     }
     let from_disk = t0.elapsed().as_secs_f64();
     let n = cats.len() as f64;
-    println!("| procedural library ({} categories) | time | assets/s |", cats.len());
+    println!(
+        "| procedural library ({} categories) | time | assets/s |",
+        cats.len()
+    );
     println!("|---|---|---|");
-    println!("| build, cold (generator only) | {cold:.3} s | {:.0} |", n / cold);
-    println!("| route, cold (parse + build + validate + cache) | {routed_cold:.3} s | {:.0} |", n / routed_cold);
-    println!("| route, cached in memory | {:.5} s | {:.0} |", warm, n / warm);
-    println!("| route, cached on disk (fresh process view) | {from_disk:.3} s | {:.0} |", n / from_disk);
+    println!(
+        "| build, cold (generator only) | {cold:.3} s | {:.0} |",
+        n / cold
+    );
+    println!(
+        "| route, cold (parse + build + validate + cache) | {routed_cold:.3} s | {:.0} |",
+        n / routed_cold
+    );
+    println!(
+        "| route, cached in memory | {:.5} s | {:.0} |",
+        warm,
+        n / warm
+    );
+    println!(
+        "| route, cached on disk (fresh process view) | {from_disk:.3} s | {:.0} |",
+        n / from_disk
+    );
     println!();
 
     // 2. V-HACD on three meshes.
-    let torus = tube(|t| { let a = std::f64::consts::TAU * t; [0.3 * a.cos(), 0.3 * a.sin(), 0.15] }, 100, 50, 0.1);
+    let torus = tube(
+        |t| {
+            let a = std::f64::consts::TAU * t;
+            [0.3 * a.cos(), 0.3 * a.sin(), 0.15]
+        },
+        100,
+        50,
+        0.1,
+    );
     let mut sofa = merged_visual("l_shaped_sofa");
     while sofa.triangles.len() < 5000 {
         sofa = subdivide(&sofa);
@@ -146,7 +178,11 @@ fn main() {
     let knot = tube(
         |t| {
             let a = std::f64::consts::TAU * t;
-            [0.1 * (a.sin() + 2.0 * (2.0 * a).sin()), 0.1 * (a.cos() - 2.0 * (2.0 * a).cos()), 0.1 * (-(3.0 * a).sin()) + 0.2]
+            [
+                0.1 * (a.sin() + 2.0 * (2.0 * a).sin()),
+                0.1 * (a.cos() - 2.0 * (2.0 * a).cos()),
+                0.1 * (-(3.0 * a).sin()) + 0.2,
+            ]
         },
         390,
         64,
@@ -154,13 +190,29 @@ fn main() {
     );
     println!("| mesh | triangles | parry3d V-HACD time | hulls | hull volume / mesh volume |");
     println!("|---|---|---|---|---|");
-    for (name, mesh) in [("torus", &torus), ("l_shaped_sofa", &sofa), ("trefoil_knot", &knot)] {
+    for (name, mesh) in [
+        ("torus", &torus),
+        ("l_shaped_sofa", &sofa),
+        ("trefoil_knot", &knot),
+    ] {
         std::fs::write(out.join(format!("{name}.obj")), trimesh_to_obj(mesh)).expect("write OBJ");
         let t0 = Instant::now();
-        let hulls = vhacd::decompose(mesh, VhacdOptions { resolution: 64, concavity: 0.01, max_hulls: 64 });
+        let hulls = vhacd::decompose(
+            mesh,
+            VhacdOptions {
+                resolution: 64,
+                concavity: 0.01,
+                max_hulls: 64,
+            },
+        );
         let dt = t0.elapsed().as_secs_f64();
         let hv: f64 = hulls.iter().map(|h| h.volume()).sum();
         let mv = scenesmith::geometry::mesh::enclosed_volume(mesh);
-        println!("| {name} | {} | {dt:.3} s | {} | {:.3} |", mesh.triangles.len(), hulls.len(), hv / mv);
+        println!(
+            "| {name} | {} | {dt:.3} s | {} | {:.3} |",
+            mesh.triangles.len(),
+            hulls.len(),
+            hv / mv
+        );
     }
 }

@@ -60,25 +60,30 @@ fn lexicon() -> &'static Lexicon {
 }
 
 /// What a request's words say about the object's look.
-#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Attributes {
     /// Main colour (the first colour word), linear RGB.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub color: Option<[f64; 3]>,
     /// The colour word.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub color_name: Option<String>,
     /// Further colour words, in order ("red and white" -> white).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub other_colors: Vec<(String, [f64; 3])>,
     /// Material named by the words (a key of the material table).
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<String>,
     /// Style named by the words.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     pub style: Option<Style>,
     /// Size factor from words such as "small" or "large" (1 when none).
+    #[serde(default = "one")]
     pub size_scale: f64,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 /// Lower-case words of `text`, punctuation removed (hyphens and apostrophes inside words kept

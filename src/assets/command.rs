@@ -97,12 +97,15 @@ fn summary(asset: &Asset, routed: &Routed) -> serde_json::Value {
     })
 }
 
+/// Renders a PNG preview of an asset, `None` when it cannot.
+pub type PreviewFn<'a> = &'a dyn Fn(&Asset) -> Option<Vec<u8>>;
+
 /// Routes and writes: the main asset into `out`, each part into `out/parts/<category>`.
 /// `preview` renders a PNG of an asset (the CLI passes the renderer; `None` skips previews).
 pub fn make_asset(
     opts: &AssetOptions,
     ctx: &RouterContext,
-    preview: Option<&dyn Fn(&Asset) -> Option<Vec<u8>>>,
+    preview: Option<PreviewFn<'_>>,
 ) -> Result<AssetReport, AssetCommandError> {
     let stage = opts.stage.unwrap_or_else(|| guess_stage(&opts.description));
     let mut req = RouteRequest::new(&opts.description, stage, opts.seed);

@@ -8,6 +8,7 @@
 
 pub mod library;
 pub mod parts;
+mod reader;
 
 use std::collections::BTreeMap;
 

@@ -29,8 +29,10 @@ mod misc;
 pub(crate) mod parts;
 mod seating;
 pub mod shapes;
+mod shelving;
 mod storage;
 mod tables;
+mod toys;
 mod wall;
 
 use std::collections::BTreeMap;
@@ -318,11 +320,12 @@ fn generator(name: &str) -> Option<GeneratorFn> {
     static TABLE: OnceLock<BTreeMap<&'static str, GeneratorFn>> = OnceLock::new();
     TABLE
         .get_or_init(|| {
-            let families: [&[(&str, GeneratorFn)]; 16] = [
+            let families: [&[(&str, GeneratorFn)]; 18] = [
                 tables::GENERATORS,
                 seating::GENERATORS,
                 beds::GENERATORS,
                 storage::GENERATORS,
+                shelving::GENERATORS,
                 kitchen::GENERATORS,
                 bathroom::GENERATORS,
                 equipment::GENERATORS,
@@ -333,6 +336,7 @@ fn generator(name: &str) -> Option<GeneratorFn> {
                 food::GENERATORS,
                 electronics::GENERATORS,
                 decor::GENERATORS,
+                toys::GENERATORS,
                 super::thin::GENERATORS,
                 generic::GENERATORS,
             ];
