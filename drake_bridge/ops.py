@@ -9,7 +9,7 @@ from pydrake.common.eigen_geometry import Quaternion
 from pydrake.geometry import Role
 from pydrake.multibody.tree import ModelInstanceIndex
 
-from drake_bridge import BRIDGE_VERSION, PROTOCOL
+from drake_bridge import BRIDGE_VERSION, PROTOCOL, asset_checks
 from drake_bridge.errors import BadRequest
 from drake_bridge.plant_cache import PlantCache
 
@@ -208,6 +208,7 @@ def op_collision_report(args):
 
 
 OPS = {
+    **asset_checks.OPS,
     "ping": op_ping,
     "versions": op_versions,
     "load": op_load,

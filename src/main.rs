@@ -72,6 +72,28 @@ enum Command {
         #[arg(long, short)]
         out: Option<PathBuf>,
     },
+    /// Make one asset from a description: SDFormat + glTF visuals + convex collisions +
+    /// asset.json (and composite parts under parts/), through the asset router.
+    ///
+    /// Uses the asset cache (SCENESMITH_ASSET_CACHE, default ~/.cache/scenesmith/assets, "off"
+    /// to disable) and the external sources configured in the environment
+    /// (SCENESMITH_ARTICULATED_DIR, SCENESMITH_MESH_DIR, SCENESMITH_TEXT_TO_3D_URL).
+    Asset {
+        /// What to make, e.g. "a red oak dining table" or "a bowl with 6 apples".
+        description: String,
+        /// Output directory (replaced if it holds a previous asset).
+        #[arg(long, short)]
+        out: PathBuf,
+        /// Stage to route for: furniture, wall, ceiling or manipuland (guessed when absent).
+        #[arg(long)]
+        stage: Option<String>,
+        /// Target size "W,D,H" in metres.
+        #[arg(long)]
+        size: Option<String>,
+        /// Seed.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+    },
 }
 
 /// Language-model backend options (the built-in offline backend is used without them).
@@ -336,6 +358,84 @@ fn run_doctor(cli_json: bool) -> anyhow::Result<ExitCode> {
     })
 }
 
+fn run_asset(
+    cli_json: bool,
+    description: String,
+    out: PathBuf,
+    stage: Option<String>,
+    size: Option<String>,
+    seed: u64,
+) -> anyhow::Result<ExitCode> {
+    use scenesmith::assets::{command, router};
+    let stage = match stage.as_deref() {
+        None => None,
+        Some(s) => Some(
+            serde_json::from_value::<router::Stage>(json!(s)).map_err(|_| {
+                anyhow::anyhow!("--stage must be furniture, wall, ceiling or manipuland, not {s:?}")
+            })?,
+        ),
+    };
+    let size = match size {
+        None => None,
+        Some(s) => {
+            let v: Vec<f64> = s
+                .split(',')
+                .map(|x| x.trim().parse::<f64>())
+                .collect::<Result<_, _>>()
+                .map_err(|_| {
+                    anyhow::anyhow!("--size must be three numbers in metres, e.g. 1.2,0.8,0.75")
+                })?;
+            let arr: [f64; 3] = v
+                .try_into()
+                .map_err(|_| anyhow::anyhow!("--size needs exactly three numbers"))?;
+            Some(arr)
+        }
+    };
+    let opts = command::AssetOptions {
+        description,
+        out,
+        stage,
+        size,
+        seed,
+    };
+    let ctx = router::RouterContext::from_env();
+    let report = match command::make_asset(&opts, &ctx, None) {
+        Ok(r) => r,
+        Err(command::AssetCommandError::Route(e)) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+        Err(e) => return Err(e.into()),
+    };
+    if cli_json {
+        print_json(&serde_json::to_value(&report)?)?;
+    } else {
+        for a in &report.assets {
+            eprintln!(
+                "wrote {} ({} x{}, {:?}, {:.2} x {:.2} x {:.2} m, {:.2} kg, {} hulls{})",
+                a.dir.display(),
+                a.category,
+                a.count,
+                a.strategy,
+                a.size_m[0],
+                a.size_m[1],
+                a.size_m[2],
+                a.mass_kg,
+                a.collision_pieces,
+                if a.joints.is_empty() {
+                    String::new()
+                } else {
+                    format!(", joints {}", a.joints.join(" "))
+                }
+            );
+        }
+        for n in &report.notes {
+            eprintln!("  note: {n}");
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 fn main() -> ExitCode {
     init_logging();
     let cli = Cli::parse();
@@ -369,6 +469,13 @@ fn main() -> ExitCode {
         } => run_check(cli.json, dir, threshold, max_col),
         Command::Doctor => run_doctor(cli.json),
         Command::Render { dir, out } => run_render(cli.json, dir, out),
+        Command::Asset {
+            description,
+            out,
+            stage,
+            size,
+            seed,
+        } => run_asset(cli.json, description, out, stage, size, seed),
     };
     match result {
         Ok(code) => code,

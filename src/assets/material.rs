@@ -26,15 +26,52 @@ struct Table {
     materials: BTreeMap<String, Material>,
 }
 
+#[derive(Deserialize)]
+struct SpreadEntry {
+    #[serde(default = "default_spread")]
+    density_spread: f64,
+}
+
+#[derive(Deserialize)]
+struct SpreadTable {
+    materials: BTreeMap<String, SpreadEntry>,
+}
+
+fn default_spread() -> f64 {
+    0.15
+}
+
+const TABLE_JSON: &str = include_str!("../data/materials.json");
+
 fn table() -> &'static BTreeMap<String, Material> {
     static TABLE: OnceLock<BTreeMap<String, Material>> = OnceLock::new();
     TABLE.get_or_init(|| {
         // The file is part of the binary and checked by a unit test; an error here is a bug in
         // the shipped data, not bad user input.
-        serde_json::from_str::<Table>(include_str!("../data/materials.json"))
+        serde_json::from_str::<Table>(TABLE_JSON)
             .map(|t| t.materials)
             .unwrap_or_default()
     })
+}
+
+/// Relative spread of real densities of a material (`0.15` = +-15 %), used for the mass range
+/// written for domain randomisation; 0.15 for unknown names.
+pub fn spread(name: &str) -> f64 {
+    static SPREAD: OnceLock<BTreeMap<String, f64>> = OnceLock::new();
+    SPREAD
+        .get_or_init(|| {
+            serde_json::from_str::<SpreadTable>(TABLE_JSON)
+                .map(|t| {
+                    t.materials
+                        .into_iter()
+                        .map(|(k, v)| (k, v.density_spread))
+                        .collect()
+                })
+                .unwrap_or_default()
+        })
+        .get(name)
+        .copied()
+        .unwrap_or_else(default_spread)
 }
 
 /// The material called `name`, if the table has it.
@@ -77,5 +114,19 @@ mod tests {
         let wood = material("wood").unwrap();
         assert_eq!((wood.mu_dynamic, wood.density), (0.40, 600.0));
         assert_eq!(material("steel").unwrap().density, 7800.0);
+        for (name, mu, rho) in [
+            ("ceramic", 0.35, 2400.0),
+            ("glass", 0.9, 2500.0),
+            ("fabric", 0.40, 500.0),
+            ("rubber", 1.15, 1100.0),
+            ("paper", 0.32, 900.0),
+        ] {
+            let m = material(name).unwrap();
+            assert_eq!((m.mu_dynamic, m.density), (mu, rho), "{name}");
+        }
+        for n in super::names() {
+            let s = spread(n);
+            assert!(s > 0.0 && s < 0.5, "{n}: spread {s}");
+        }
     }
 }

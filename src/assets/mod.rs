@@ -5,14 +5,27 @@
 //! have their bottom at z = 0 (centred in x and y), wall objects their back at y = 0, ceiling
 //! objects their top at z = 0. The first link is the root; its frame is the model frame.
 
+pub mod articulated;
+pub mod attributes;
+mod builder;
+pub mod cache;
+pub mod catalog;
+pub mod command;
+pub mod external;
+pub mod files;
 pub mod material;
+pub mod physical;
 pub mod procedural;
+pub mod router;
+pub mod textures;
+pub mod thin;
 
 use serde::{Deserialize, Serialize};
 
 use crate::geometry::{ConvexPiece, GeometryError, MassProps, TriMesh, mesh};
 use crate::scene::{AssetRecord, JointRecord, Pose, SurfaceRecord};
 
+pub use builder::LinkBuilder;
 pub use material::Material;
 
 /// What can go wrong making an asset.
@@ -299,132 +312,6 @@ pub fn content_id(category: &str, key: &serde_json::Value) -> String {
     let mut code = crate::scene::ids::base36(n);
     code.truncate(8);
     format!("{}_{code}", crate::scene::sanitize_name(category))
-}
-
-/// Collects the parts of one link; [`LinkBuilder::finish`] computes its mass properties.
-#[derive(Debug, Clone)]
-pub struct LinkBuilder {
-    name: String,
-    model_from_link: Pose,
-    visuals: Vec<VisualPart>,
-    collisions: Vec<ConvexPiece>,
-    material: Material,
-}
-
-impl LinkBuilder {
-    /// A link named `name` made of `material`, with its frame at `model_from_link`.
-    pub fn new(name: &str, model_from_link: Pose, material: Material) -> Self {
-        LinkBuilder {
-            name: name.to_string(),
-            model_from_link,
-            visuals: Vec::new(),
-            collisions: Vec::new(),
-            material,
-        }
-    }
-
-    fn next_part_name(&self) -> String {
-        format!("part_{}", self.visuals.len())
-    }
-
-    /// A box part, visual and collision, of full extents `size` centred at `center` (link frame).
-    pub fn add_box(
-        &mut self,
-        center: [f64; 3],
-        size: [f64; 3],
-        color: [f64; 3],
-    ) -> Result<&mut Self, GeometryError> {
-        let piece = ConvexPiece::cuboid(center, size)?;
-        self.collisions.push(piece);
-        let name = self.next_part_name();
-        self.visuals.push(VisualPart {
-            name,
-            mesh: mesh::box_mesh(center, size),
-            color: [color[0], color[1], color[2], 1.0],
-            texture: None,
-        });
-        Ok(self)
-    }
-
-    /// A vertical cylinder part, visual (smooth-ish) and collision (prism).
-    pub fn add_cylinder(
-        &mut self,
-        center_xy: [f64; 2],
-        radius: f64,
-        z0: f64,
-        z1: f64,
-        color: [f64; 3],
-    ) -> Result<&mut Self, GeometryError> {
-        let piece = ConvexPiece::cylinder(center_xy[0], center_xy[1], radius, z0, z1, 16)?;
-        self.collisions.push(piece);
-        let name = self.next_part_name();
-        self.visuals.push(VisualPart {
-            name,
-            mesh: mesh::cylinder_mesh(center_xy[0], center_xy[1], radius, z0, z1, 24),
-            color: [color[0], color[1], color[2], 1.0],
-            texture: None,
-        });
-        Ok(self)
-    }
-
-    /// A visual-only mesh (link frame).
-    pub fn add_visual(&mut self, mesh: TriMesh, color: [f64; 3]) -> &mut Self {
-        let name = self.next_part_name();
-        self.visuals.push(VisualPart {
-            name,
-            mesh,
-            color: [color[0], color[1], color[2], 1.0],
-            texture: None,
-        });
-        self
-    }
-
-    /// A visual-only textured mesh (link frame); the mesh must carry `uvs`.
-    pub fn add_textured_visual(&mut self, mesh: TriMesh, texture: Texture) -> &mut Self {
-        let name = self.next_part_name();
-        self.visuals.push(VisualPart {
-            name,
-            mesh,
-            color: [1.0, 1.0, 1.0, 1.0],
-            texture: Some(texture),
-        });
-        self
-    }
-
-    /// A collision-only convex piece (link frame).
-    pub fn add_collision(&mut self, piece: ConvexPiece) -> &mut Self {
-        self.collisions.push(piece);
-        self
-    }
-
-    /// Computes mass properties at the material's density and returns the link.
-    pub fn finish(self) -> Result<Link, GeometryError> {
-        let mass = MassProps::from_pieces(&self.collisions, self.material.density)?;
-        Ok(Link {
-            name: self.name,
-            model_from_link: self.model_from_link,
-            visuals: self.visuals,
-            collisions: self.collisions,
-            mass,
-            contact: Contact::from(&self.material),
-        })
-    }
-
-    /// Returns the link without mass properties (static architecture).
-    pub fn finish_static(self) -> Link {
-        Link {
-            name: self.name,
-            model_from_link: self.model_from_link,
-            visuals: self.visuals,
-            collisions: self.collisions,
-            mass: MassProps {
-                mass: 1.0,
-                com: [0.0; 3],
-                inertia: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-            },
-            contact: Contact::from(&self.material),
-        }
-    }
 }
 
 /// Pose of every link in the model frame for the given joint positions (missing joints at 0).

@@ -320,7 +320,11 @@ mod tests {
     fn plurals_aliases_and_negation() {
         let r = read("An office with bookshelves, some plates, and no cabinet.");
         assert_eq!(r.room_type, "office");
-        let shelf = r.mentions.iter().find(|m| m.category == "shelf").unwrap();
+        let shelf = r
+            .mentions
+            .iter()
+            .find(|m| m.category == "bookshelf")
+            .unwrap();
         assert_eq!(shelf.count, Count::Several);
         let cab = r.mentions.iter().find(|m| m.category == "cabinet").unwrap();
         assert!(cab.negated);

@@ -1,11 +1,39 @@
-//! Procedural assets: parametric, seeded generators made of convex parts.
+//! Procedural assets: parametric, seeded generators made of exact convex parts.
 //!
 //! A request names a category and optionally a size, a material and a colour; the category's
-//! prior (from `src/data/asset_priors.json`) fills in the rest. The same request always yields
+//! prior (from `src/data/asset_priors.json`: size range, support class, default and accent
+//! materials, generator and variant, aliases) fills in the rest. The same request always yields
 //! the same asset with the same content-addressed id.
+//!
+//! Generators live in one file per family (`tables`, `seating`, `beds`, `storage`, `kitchen`,
+//! `bathroom`, `equipment`, `misc`, `lighting`, `wall`, `kitchenware`, `food`, `electronics`,
+//! `decor`);
+//! thin coverings (rugs, posters, tablecloths) are in [`crate::assets::thin`] and drawers and
+//! doors in [`crate::assets::articulated`]. Nouns no generator knows get a generic shape
+//! from their support class through [`build_generic`], marked `generic` in provenance.
+//!
+//! This module does not decide which stage may ask for what, split composites, or cache: that
+//! is the router's job ([`crate::assets::router`]).
 
-mod furniture;
-mod small;
+mod bathroom;
+mod beds;
+mod decor;
+mod electronics;
+mod equipment;
+mod food;
+mod generic;
+mod kitchen;
+mod kitchenware;
+mod lighting;
+mod misc;
+pub(crate) mod parts;
+mod seating;
+pub mod shapes;
+mod shelving;
+mod storage;
+mod tables;
+mod toys;
+mod wall;
 
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
@@ -14,14 +42,17 @@ use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
 use serde::{Deserialize, Serialize};
 
-use super::{Asset, AssetError, Material, content_id, material};
+use super::attributes::Style;
+use super::{Asset, AssetError, Material, content_id, material, physical};
 use crate::scene::SurfaceRecord;
 
+pub use generic::build_generic;
+
 /// Bumped whenever any generator's output changes, so cached assets are rebuilt.
-pub const GENERATOR_VERSION: u32 = 1;
+pub const GENERATOR_VERSION: u32 = 2;
 
 /// Where an asset of a category is normally supported.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SupportClass {
     /// Stands on the floor.
@@ -32,6 +63,42 @@ pub enum SupportClass {
     Wall,
     /// Hangs from the ceiling.
     Ceiling,
+}
+
+impl SupportClass {
+    /// `floor`, `surface`, `wall`, `ceiling`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            SupportClass::Floor => "floor",
+            SupportClass::Surface => "surface",
+            SupportClass::Wall => "wall",
+            SupportClass::Ceiling => "ceiling",
+        }
+    }
+}
+
+/// How the embedded library makes a category.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Kind {
+    /// Rigid parametric model.
+    #[default]
+    Procedural,
+    /// Parametric model with joints (doors, drawers, lids).
+    Articulated,
+    /// Thin textured geometry (rugs, posters, tablecloths).
+    ThinCovering,
+}
+
+impl Kind {
+    /// `procedural`, `articulated`, `thin_covering`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Kind::Procedural => "procedural",
+            Kind::Articulated => "articulated",
+            Kind::ThinCovering => "thin_covering",
+        }
+    }
 }
 
 /// Size prior and defaults of one category.
@@ -52,6 +119,21 @@ pub struct Prior {
     /// Other nouns meaning this category.
     #[serde(default)]
     pub aliases: Vec<String>,
+    /// Variant of the generator (`coffee` for a coffee table, `king` for a bed, ...).
+    #[serde(default)]
+    pub variant: String,
+    /// Material of legs, frames, handles and trims (the main material when absent).
+    #[serde(default)]
+    pub accent: Option<String>,
+    /// Procedural, articulated or thin covering.
+    #[serde(default)]
+    pub kind: Kind,
+    /// Things are put inside it (bowls, baskets, bins, drawers' carcasses, fridges).
+    #[serde(default)]
+    pub container: bool,
+    /// Default colour (linear RGB) when the request names none; the material's otherwise.
+    #[serde(default)]
+    pub color: Option<[f64; 3]>,
 }
 
 #[derive(Deserialize)]
@@ -68,17 +150,67 @@ fn priors() -> &'static BTreeMap<String, Prior> {
     })
 }
 
+/// Noun (category or alias, lower case, single spaces) -> categories it may mean, the
+/// category itself first.
+fn noun_index() -> &'static BTreeMap<String, Vec<&'static str>> {
+    static INDEX: OnceLock<BTreeMap<String, Vec<&'static str>>> = OnceLock::new();
+    INDEX.get_or_init(|| {
+        let mut index: BTreeMap<String, Vec<&'static str>> = BTreeMap::new();
+        for (k, p) in priors() {
+            index
+                .entry(k.replace('_', " "))
+                .or_default()
+                .insert(0, k.as_str());
+            for a in &p.aliases {
+                let e = index.entry(a.clone()).or_default();
+                if !e.contains(&k.as_str()) {
+                    e.push(k.as_str());
+                }
+            }
+        }
+        index
+    })
+}
+
+fn normalize_noun(noun: &str) -> String {
+    noun.trim()
+        .to_ascii_lowercase()
+        .replace(['_', '-'], " ")
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// The category a noun names (the noun itself or an alias), if any generator knows it.
 pub fn resolve_category(noun: &str) -> Option<&'static str> {
-    let noun = noun.trim().to_ascii_lowercase();
-    let table = priors();
-    if let Some((k, _)) = table.get_key_value(noun.as_str()) {
+    let noun = normalize_noun(noun);
+    if let Some((k, _)) = priors().get_key_value(noun.replace(' ', "_").as_str()) {
         return Some(k.as_str());
     }
-    table
-        .iter()
-        .find(|(_, p)| p.aliases.iter().any(|a| a == &noun))
-        .map(|(k, _)| k.as_str())
+    noun_index().get(&noun).and_then(|v| v.first().copied())
+}
+
+/// Every category a noun may name (a "clock" is a wall clock or a table clock); the first is
+/// what [`resolve_category`] returns.
+pub fn candidate_categories(noun: &str) -> Vec<&'static str> {
+    let noun = normalize_noun(noun);
+    let mut out: Vec<&'static str> = Vec::new();
+    if let Some((k, _)) = priors().get_key_value(noun.replace(' ', "_").as_str()) {
+        out.push(k.as_str());
+    }
+    for c in noun_index().get(&noun).into_iter().flatten() {
+        if !out.contains(c) {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// Every noun the library knows (categories with spaces, and aliases), longest first.
+pub fn known_nouns() -> Vec<&'static str> {
+    let mut v: Vec<&'static str> = noun_index().keys().map(String::as_str).collect();
+    v.sort_by(|a, b| b.len().cmp(&a.len()).then(a.cmp(b)));
+    v
 }
 
 /// The prior of a category.
@@ -124,10 +256,54 @@ impl AssetRequest {
 
 /// Everything a generator function gets.
 pub(crate) struct GenContext {
+    /// Bounding size (x, y, z) the asset must fill, metres.
     pub size: [f64; 3],
+    /// Main material.
     pub material: Material,
+    /// Main colour, linear RGB.
     pub color: [f64; 3],
+    /// Material of legs, frames, handles.
+    pub accent: Material,
+    /// Colour of legs, frames, handles.
+    pub accent_color: [f64; 3],
+    /// Generator variant from the prior.
+    pub variant: &'static str,
+    /// Style from the request, if any.
+    pub style: Option<Style>,
+    /// The seeded random source.
     pub rng: ChaCha8Rng,
+}
+
+impl GenContext {
+    /// The style's name, or "".
+    pub fn style_name(&self) -> &str {
+        self.style.as_ref().map_or("", |s| s.name.as_str())
+    }
+
+    /// A palette colour of the style (or a default palette), chosen by index.
+    pub fn palette(&self, i: usize) -> [f64; 3] {
+        const DEFAULT: [[f64; 3]; 6] = [
+            [0.55, 0.05, 0.04],
+            [0.05, 0.20, 0.50],
+            [0.80, 0.55, 0.08],
+            [0.10, 0.35, 0.12],
+            [0.85, 0.85, 0.82],
+            [0.04, 0.04, 0.05],
+        ];
+        match &self.style {
+            Some(s) if !s.palette.is_empty() => s.palette[i % s.palette.len()],
+            _ => DEFAULT[i % DEFAULT.len()],
+        }
+    }
+
+    /// A uniform random number in `[lo, hi)`.
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        if hi > lo {
+            self.rng.random_range(lo..hi)
+        } else {
+            lo
+        }
+    }
 }
 
 /// What a generator returns before ids and provenance are attached.
@@ -137,19 +313,37 @@ pub(crate) struct Generated {
     pub surfaces: Vec<SurfaceRecord>,
 }
 
-type GeneratorFn = fn(&mut GenContext) -> Result<Generated, crate::geometry::GeometryError>;
+pub(crate) type GeneratorFn =
+    fn(&mut GenContext) -> Result<Generated, crate::geometry::GeometryError>;
 
 fn generator(name: &str) -> Option<GeneratorFn> {
-    Some(match name {
-        "table" => furniture::table,
-        "chair" => furniture::chair,
-        "cabinet" => furniture::cabinet,
-        "shelf" => furniture::shelf,
-        "mug" => small::mug,
-        "plate" => small::plate,
-        "book" => small::book,
-        _ => return None,
-    })
+    static TABLE: OnceLock<BTreeMap<&'static str, GeneratorFn>> = OnceLock::new();
+    TABLE
+        .get_or_init(|| {
+            let families: [&[(&str, GeneratorFn)]; 18] = [
+                tables::GENERATORS,
+                seating::GENERATORS,
+                beds::GENERATORS,
+                storage::GENERATORS,
+                shelving::GENERATORS,
+                kitchen::GENERATORS,
+                bathroom::GENERATORS,
+                equipment::GENERATORS,
+                misc::GENERATORS,
+                lighting::GENERATORS,
+                wall::GENERATORS,
+                kitchenware::GENERATORS,
+                food::GENERATORS,
+                electronics::GENERATORS,
+                decor::GENERATORS,
+                toys::GENERATORS,
+                super::thin::GENERATORS,
+                generic::GENERATORS,
+            ];
+            families.iter().flat_map(|f| f.iter().copied()).collect()
+        })
+        .get(name)
+        .copied()
 }
 
 /// Rounds to 0.1 mm so ids do not depend on float noise.
@@ -157,8 +351,47 @@ fn round_size(size: [f64; 3]) -> [f64; 3] {
     size.map(|v| (v * 1e4).round() / 1e4)
 }
 
+/// Whether a material name is one of the woods (styles replace woods, not metals or glass).
+fn is_wood(name: &str) -> bool {
+    matches!(
+        name,
+        "wood"
+            | "oak"
+            | "walnut"
+            | "pine"
+            | "mdf"
+            | "cherry"
+            | "maple"
+            | "mahogany"
+            | "teak"
+            | "birch"
+            | "laminate"
+    )
+}
+
 /// Builds the asset a request describes.
 pub fn build(request: &AssetRequest) -> Result<Asset, AssetError> {
+    build_styled(request, None)
+}
+
+/// Everything decided about a build before the generator runs.
+struct Plan {
+    category: &'static str,
+    prior: &'static Prior,
+    gen_fn: GeneratorFn,
+    size: [f64; 3],
+    material_name: String,
+    material: Material,
+    color: [f64; 3],
+    accent_name: String,
+    accent: Material,
+    accent_color: [f64; 3],
+    style_name: Option<String>,
+    id: String,
+    rng: ChaCha8Rng,
+}
+
+fn plan(request: &AssetRequest, style: Option<&Style>) -> Result<Plan, AssetError> {
     let category = resolve_category(&request.category)
         .ok_or_else(|| AssetError::UnknownCategory(request.category.clone()))?;
     let prior = prior(category).ok_or_else(|| AssetError::UnknownCategory(category.into()))?;
@@ -179,10 +412,10 @@ pub fn build(request: &AssetRequest) -> Result<Asset, AssetError> {
             out
         }
         None => {
-            // Typical size with up to +-6 % seeded variation per axis.
+            // Typical size with up to +-6 % seeded variation per axis, inside the prior.
             let mut out = prior.typical;
-            for v in out.iter_mut() {
-                *v *= 1.0 + rng.random_range(-0.06..0.06);
+            for (i, v) in out.iter_mut().enumerate() {
+                *v = (*v * (1.0 + rng.random_range(-0.06..0.06))).clamp(prior.min[i], prior.max[i]);
             }
             out
         }
@@ -192,126 +425,106 @@ pub fn build(request: &AssetRequest) -> Result<Asset, AssetError> {
         .material
         .clone()
         .filter(|m| material::material(m).is_some())
+        .or_else(|| {
+            style
+                .filter(|_| is_wood(&prior.material))
+                .map(|s| s.main_material.clone())
+        })
         .unwrap_or_else(|| prior.material.clone());
     let mat = material::material_or_default(&material_name);
-    let color = request.color.unwrap_or(mat.color);
-
+    let color = request.color.or(prior.color).unwrap_or(mat.color);
+    let accent_name = style
+        .map(|s| s.accent_material.clone())
+        .or_else(|| prior.accent.clone())
+        .unwrap_or_else(|| material_name.clone());
+    let accent = material::material_or_default(&accent_name);
+    let accent_color = match (style, &prior.accent) {
+        (Some(s), _) => s.accent_color,
+        (None, Some(_)) => accent.color,
+        (None, None) => parts::shade(color, 0.82),
+    };
+    let style_name = style.map(|s| s.name.clone());
     let key = serde_json::json!({
         "generator": prior.generator,
+        "variant": prior.variant,
         "generator_version": GENERATOR_VERSION,
         "size": size,
         "material": material_name,
         "color": color,
+        "style": style_name,
         "seed": request.seed,
     });
     let id = content_id(category, &key);
-    let mut ctx = GenContext {
+    Ok(Plan {
+        category,
+        prior,
+        gen_fn,
         size,
+        material_name,
         material: mat,
         color,
+        accent_name,
+        accent,
+        accent_color,
+        style_name,
+        id,
         rng,
+    })
+}
+
+/// The content id [`build_styled`] would give this request, without building it (for cache
+/// look-ups).
+pub fn asset_id(request: &AssetRequest, style: Option<&Style>) -> Result<String, AssetError> {
+    plan(request, style).map(|p| p.id)
+}
+
+/// Builds the asset a request describes in a style (accent material and colour, palette,
+/// wood replaced by the style's main material unless the request names a material).
+pub fn build_styled(request: &AssetRequest, style: Option<&Style>) -> Result<Asset, AssetError> {
+    let p = plan(request, style)?;
+    let mut ctx = GenContext {
+        size: p.size,
+        material: p.material,
+        color: p.color,
+        accent: p.accent,
+        accent_color: p.accent_color,
+        variant: p.prior.variant.as_str(),
+        style: style.cloned(),
+        rng: p.rng,
     };
-    let generated = gen_fn(&mut ctx).map_err(|source| AssetError::Geometry {
-        asset: id.clone(),
+    let generated = (p.gen_fn)(&mut ctx).map_err(|source| AssetError::Geometry {
+        asset: p.id.clone(),
         source,
     })?;
-    let asset = Asset {
-        id,
-        category: category.to_string(),
-        material: material_name,
+    let kind = if generated.joints.is_empty() {
+        p.prior.kind
+    } else {
+        Kind::Articulated
+    };
+    let mut asset = Asset {
+        id: p.id,
+        category: p.category.to_string(),
+        material: p.material_name,
         links: generated.links,
         joints: generated.joints,
         surfaces: generated.surfaces,
         is_static: false,
         provenance: serde_json::json!({
-            "strategy": "procedural",
-            "generator": prior.generator,
+            "strategy": kind.as_str(),
+            "generator": p.prior.generator,
+            "variant": p.prior.variant,
             "generator_version": GENERATOR_VERSION,
-            "parameters": {"size": size, "color": color},
+            "parameters": {"size": p.size, "color": p.color, "accent": p.accent_name, "style": p.style_name},
+            "support": p.prior.support.as_str(),
             "seed": request.seed,
             "license": "CC0-1.0 (generated by scenesmith)",
         }),
     };
-    asset.validate()?;
+    physical::check(&asset, p.prior.support)?;
+    let summary = physical::summarize(&asset, p.prior.support);
+    asset.provenance["physics"] = serde_json::to_value(&summary).unwrap_or_default();
     Ok(asset)
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_category_builds_a_valid_asset_within_its_prior() {
-        for cat in categories() {
-            let asset = build(&AssetRequest::new(cat, 11)).unwrap();
-            asset.validate().unwrap();
-            let p = prior(cat).unwrap();
-            let [lo, hi] = asset.bounds();
-            for i in 0..3 {
-                let extent = hi[i] - lo[i];
-                assert!(
-                    extent >= p.min[i] * 0.9 && extent <= p.max[i] * 1.1,
-                    "{cat}: axis {i} extent {extent} outside prior [{}, {}]",
-                    p.min[i],
-                    p.max[i]
-                );
-            }
-            // Canonical frame: bottom at z = 0, centred in x.
-            assert!(lo[2].abs() < 1e-9, "{cat}: bottom at {}", lo[2]);
-            assert!((lo[0] + hi[0]).abs() < 0.05, "{cat}: not centred in x");
-            assert!(asset.collision_pieces() >= 1);
-        }
-    }
-
-    #[test]
-    fn same_request_same_asset() {
-        let r = AssetRequest::new("chair", 5);
-        let a = build(&r).unwrap();
-        let b = build(&r).unwrap();
-        assert_eq!(a, b);
-        let c = build(&AssetRequest::new("chair", 6)).unwrap();
-        assert_ne!(a.id, c.id);
-    }
-
-    #[test]
-    fn aliases_and_unknown_nouns() {
-        assert_eq!(resolve_category("Bookshelf"), Some("shelf"));
-        assert_eq!(resolve_category("coffee mug"), Some("mug"));
-        assert!(matches!(
-            build(&AssetRequest::new("spaceship", 1)),
-            Err(AssetError::UnknownCategory(_))
-        ));
-    }
-
-    #[test]
-    fn requested_size_is_clamped_to_prior() {
-        let mut r = AssetRequest::new("table", 1);
-        r.size = Some([50.0, 0.9, 0.75]);
-        let a = build(&r).unwrap();
-        let [lo, hi] = a.bounds();
-        assert!(hi[0] - lo[0] <= 3.2 + 1e-9);
-    }
-
-    #[test]
-    fn cabinet_door_is_articulated() {
-        let a = build(&AssetRequest::new("cabinet", 2)).unwrap();
-        assert_eq!(a.links.len(), 2);
-        assert_eq!(a.joints.len(), 1);
-        let j = &a.joints[0];
-        assert!(j.lower == 0.0 && j.upper > 1.5);
-    }
-
-    #[test]
-    fn mug_is_hollow() {
-        let a = build(&AssetRequest::new("mug", 3)).unwrap();
-        let link = &a.links[0];
-        let solid_volume: f64 = link.collisions.iter().map(|c| c.volume()).sum();
-        let [lo, hi] = a.bounds();
-        let r = (hi[1] - lo[1]) / 2.0;
-        let cylinder = std::f64::consts::PI * r * r * (hi[2] - lo[2]);
-        assert!(
-            solid_volume < 0.4 * cylinder,
-            "{solid_volume} vs {cylinder}"
-        );
-    }
-}
+mod tests;

@@ -1,0 +1,632 @@
+//! The asset router: every placement stage asks it for objects in plain words.
+//!
+//! `route(&RouteRequest, &RouterContext) -> Result<Routed, RouteError>` takes the designer's
+//! description ("red oak dining table", "a bowl with 6 apples and oranges"), an optional
+//! category, an optional target size, the stage asking (furniture, wall, ceiling,
+//! manipuland) and a seed, and
+//!
+//! 1. **filters by stage**: each stage places one support class (furniture: floor; wall: wall;
+//!    ceiling: ceiling; manipuland: furniture surfaces). A noun that means different things
+//!    ("clock", "tv", "plant") resolves to the category the stage can place; a request no
+//!    category of the stage fits is refused with a reason the designer can act on;
+//! 2. **splits composites**: "fruit bowl" becomes a bowl plus fruits (built now, role
+//!    `inside`), "desk with a monitor" a desk now plus a monitor deferred to the manipuland
+//!    stage, "dining table and four chairs" a table plus chairs (`around`);
+//! 3. **chooses a strategy**: `procedural` (the embedded generators), `articulated` (a
+//!    procedural model with joints, or a model from the user's SDF/URDF library when one
+//!    matches), `thin_covering` (rugs, posters, tablecloths), `external` (a local mesh folder
+//!    or an HTTP text-to-3D backend, for nouns the library does not know), and a `generic`
+//!    stand-in from the support class when nothing knows the noun — always reported in
+//!    `notes`, never silent;
+//! 4. **validates** every asset: dimensions within 10 % of the requested size, watertight
+//!    visual (or a recorded reason), physically valid inertia, the hull budget of its class;
+//!    retries with other seeds or the next strategy, and reports every attempt on failure;
+//! 5. **caches**: results are content-addressed (request + generator version + seed), in
+//!    memory and in the context's disk cache, so a repeated request costs a hash and a map
+//!    look-up.
+//!
+//! The router does not place anything: poses, support surfaces and counts are the stage's
+//! job (`Routed` says how many of each and how the parts relate).
+
+mod build;
+pub mod parse;
+
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+
+use super::Asset;
+use super::articulated::library::ArticulatedLibrary;
+use super::attributes::Attributes;
+use super::cache::AssetCache;
+use super::external::{HttpBackend, MeshFolder};
+use super::procedural::{self, SupportClass};
+use build::build_phrase;
+
+/// The placement stage asking.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Stage {
+    /// Floor-standing furniture (and rugs).
+    Furniture,
+    /// Objects mounted on walls.
+    Wall,
+    /// Objects hanging from the ceiling.
+    Ceiling,
+    /// Small objects on furniture surfaces.
+    Manipuland,
+}
+
+impl Stage {
+    /// The support class this stage places.
+    pub fn support(self) -> SupportClass {
+        match self {
+            Stage::Furniture => SupportClass::Floor,
+            Stage::Wall => SupportClass::Wall,
+            Stage::Ceiling => SupportClass::Ceiling,
+            Stage::Manipuland => SupportClass::Surface,
+        }
+    }
+
+    /// The stage that places a support class.
+    pub fn for_support(support: SupportClass) -> Stage {
+        match support {
+            SupportClass::Floor => Stage::Furniture,
+            SupportClass::Wall => Stage::Wall,
+            SupportClass::Ceiling => Stage::Ceiling,
+            SupportClass::Surface => Stage::Manipuland,
+        }
+    }
+
+    /// `furniture`, `wall`, `ceiling`, `manipuland`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Stage::Furniture => "furniture",
+            Stage::Wall => "wall",
+            Stage::Ceiling => "ceiling",
+            Stage::Manipuland => "manipuland",
+        }
+    }
+
+    fn hint(self) -> &'static str {
+        match self {
+            Stage::Manipuland => " (on a table, shelf or counter)",
+            Stage::Wall => " (mounted on a wall)",
+            Stage::Ceiling => " (hung from the ceiling)",
+            Stage::Furniture => " (standing on the floor)",
+        }
+    }
+
+    fn where_it_goes(self) -> &'static str {
+        match self {
+            Stage::Furniture => "stands on the floor",
+            Stage::Wall => "is mounted on a wall",
+            Stage::Ceiling => "hangs from the ceiling",
+            Stage::Manipuland => "rests on furniture surfaces (tables, shelves, counters)",
+        }
+    }
+}
+
+/// How an asset was made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Strategy {
+    /// Embedded parametric generator.
+    Procedural,
+    /// Model with joints (procedural or from the user's articulated library).
+    Articulated,
+    /// Thin textured covering.
+    ThinCovering,
+    /// Imported from a mesh folder or generated by a text-to-3D backend.
+    External,
+    /// Generic stand-in shape for an unknown noun.
+    Generic,
+}
+
+/// What to route.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RouteRequest {
+    /// The designer's words, e.g. "a small red ceramic bowl with 6 apples and oranges".
+    pub description: String,
+    /// A category or alias to use instead of the noun in the description.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub category: Option<String>,
+    /// Target size (x, y, z), metres.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<[f64; 3]>,
+    /// The stage asking.
+    pub stage: Stage,
+    /// Seed for every random choice.
+    pub seed: u64,
+}
+
+impl RouteRequest {
+    /// A request from a description at a stage.
+    pub fn new(description: &str, stage: Stage, seed: u64) -> RouteRequest {
+        RouteRequest {
+            description: description.to_string(),
+            category: None,
+            size: None,
+            stage,
+            seed,
+        }
+    }
+}
+
+/// How a part relates to the main object.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Role {
+    /// The object asked for.
+    Primary,
+    /// Inside the main object's cavity (`inside`, `basin`, drawers, shelves).
+    Inside,
+    /// On the main object's top surface.
+    On,
+    /// Next to the main object on the floor (chairs around a table).
+    Around,
+}
+
+impl Role {
+    fn from_word(word: &str, container: bool) -> Role {
+        match word {
+            "inside" | "filled with" | "full of" | "containing" | "holding" | "carrying" => {
+                if container {
+                    Role::Inside
+                } else {
+                    Role::On
+                }
+            }
+            "on" | "topped with" | "displaying" => Role::On,
+            "around" | "and" => Role::Around,
+            _ if container => Role::Inside,
+            _ => Role::On,
+        }
+    }
+}
+
+/// One built asset of a routing result.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RoutedAsset {
+    /// The asset (shared: cache hits hand out the same one).
+    pub asset: Arc<Asset>,
+    /// Its category (the noun for generic stand-ins).
+    pub category: String,
+    /// How it was made.
+    pub strategy: Strategy,
+    /// How many instances the request wants.
+    pub count: u32,
+    /// How it relates to the main object.
+    pub role: Role,
+}
+
+/// A part the current stage cannot place, for a later stage.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DeferredRequest {
+    /// The request to make at that stage (its `stage` says which).
+    pub request: RouteRequest,
+    /// How many.
+    pub count: u32,
+    /// Where it goes relative to the main object.
+    pub relation: Role,
+}
+
+/// What a request routed to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Routed {
+    /// The object asked for.
+    pub primary: RoutedAsset,
+    /// Parts built now (contents of a container, things on it, chairs around a table).
+    pub parts: Vec<RoutedAsset>,
+    /// Parts for later stages.
+    pub deferred: Vec<DeferredRequest>,
+    /// What the caller should know: generic stand-ins, clamped sizes, fallbacks, retries.
+    pub notes: Vec<String>,
+    /// Colour, material, style and size words read from the request.
+    pub attributes: Attributes,
+    /// Whether the whole result came from the cache.
+    pub cached: bool,
+}
+
+/// Why a request could not be routed; messages are written for the designer (an LLM or the
+/// rule-based designer) to act on.
+#[derive(Debug, thiserror::Error)]
+pub enum RouteError {
+    /// The description names nothing.
+    #[error("the request is empty: describe one object, e.g. \"a wooden chair\"")]
+    Empty,
+    /// The object belongs to another stage.
+    #[error(
+        "cannot place \"{noun}\" at the {} stage: a {category} {}. Ask for it at the {} stage{}, or ask for something that {} here.",
+        .stage.as_str(), .suggested.where_it_goes(), .suggested.as_str(), .suggested.hint(), .stage.where_it_goes()
+    )]
+    WrongStage {
+        /// The noun as read.
+        noun: String,
+        /// The category it names.
+        category: String,
+        /// The stage that asked.
+        stage: Stage,
+        /// The stage that places it.
+        suggested: Stage,
+    },
+    /// The requested size is not a size.
+    #[error("size {0:?} is not valid: give width, depth and height in metres, all positive")]
+    BadSize([f64; 3]),
+    /// Every attempt failed validation.
+    #[error("could not make \"{description}\" ({category}): {}", attempts.join("; "))]
+    Failed {
+        /// The request.
+        description: String,
+        /// The category tried.
+        category: String,
+        /// What went wrong on each attempt, with what to change.
+        attempts: Vec<String>,
+    },
+}
+
+/// What the router may use besides the embedded generators.
+#[derive(Debug, Default)]
+pub struct RouterContext {
+    /// Built assets and routing results.
+    pub cache: AssetCache,
+    /// User folder of articulated SDF/URDF models with a JSON index.
+    pub library: Option<ArticulatedLibrary>,
+    /// User folder of meshes (OBJ, glTF, GLB) with a JSON index.
+    pub mesh_folder: Option<MeshFolder>,
+    /// HTTP text-to-3D backend.
+    pub backend: Option<HttpBackend>,
+    /// Use the external sources before the embedded generators for known categories too.
+    pub prefer_external: bool,
+    /// Attempts per asset before giving up (other seeds, then other strategies).
+    pub max_attempts: usize,
+    /// Routing results of this process by request key: a repeated request is a hash and a
+    /// map look-up.
+    memo: std::sync::Mutex<std::collections::HashMap<String, Routed>>,
+}
+
+impl RouterContext {
+    /// Embedded generators only, memory cache.
+    pub fn new() -> RouterContext {
+        RouterContext {
+            max_attempts: 3,
+            ..Default::default()
+        }
+    }
+
+    /// From the environment: `SCENESMITH_ASSET_CACHE` (disk cache; default
+    /// `~/.cache/scenesmith/assets`, `off` for memory only), `SCENESMITH_ARTICULATED_DIR`,
+    /// `SCENESMITH_MESH_DIR`, `SCENESMITH_TEXT_TO_3D_URL` (+ `SCENESMITH_TEXT_TO_3D_TIMEOUT`
+    /// seconds). Sources that fail to open are skipped with a warning.
+    pub fn from_env() -> RouterContext {
+        let mut ctx = RouterContext::new();
+        let off = std::env::var("SCENESMITH_ASSET_CACHE").is_ok_and(|v| v == "off");
+        if !off && let Some(dir) = AssetCache::default_dir() {
+            ctx.cache = AssetCache::on_disk(&dir);
+        }
+        if let Some(dir) = std::env::var_os("SCENESMITH_ARTICULATED_DIR") {
+            match ArticulatedLibrary::open(std::path::Path::new(&dir)) {
+                Ok(l) => ctx.library = Some(l),
+                Err(e) => tracing::warn!("articulated library not used: {e}"),
+            }
+        }
+        if let Some(dir) = std::env::var_os("SCENESMITH_MESH_DIR") {
+            match MeshFolder::open(std::path::Path::new(&dir)) {
+                Ok(f) => ctx.mesh_folder = Some(f),
+                Err(e) => tracing::warn!("mesh folder not used: {e}"),
+            }
+        }
+        if let Ok(url) = std::env::var("SCENESMITH_TEXT_TO_3D_URL") {
+            let secs = std::env::var("SCENESMITH_TEXT_TO_3D_TIMEOUT")
+                .ok()
+                .and_then(|s| s.parse::<f64>().ok())
+                .unwrap_or(120.0);
+            ctx.backend = Some(HttpBackend::new(
+                &url,
+                std::time::Duration::from_secs_f64(secs),
+            ));
+        }
+        ctx
+    }
+
+    fn fingerprint(&self) -> serde_json::Value {
+        serde_json::json!({
+            "library": self.library.as_ref().map(|l| l.fingerprint()),
+            "mesh_folder": self.mesh_folder.as_ref().map(|f| f.fingerprint()),
+            "backend": self.backend.as_ref().map(|b| b.url().to_string()),
+            "prefer_external": self.prefer_external,
+        })
+    }
+}
+
+/// A routing result as stored in the cache: asset ids instead of assets.
+#[derive(Serialize, Deserialize)]
+struct RoutedRecord {
+    primary: PartRecord,
+    parts: Vec<PartRecord>,
+    deferred: Vec<DeferredRequest>,
+    notes: Vec<String>,
+    #[serde(default)]
+    attributes: Attributes,
+}
+
+#[derive(Serialize, Deserialize)]
+struct PartRecord {
+    id: String,
+    category: String,
+    strategy: Strategy,
+    count: u32,
+    role: Role,
+}
+
+fn key_of(request: &RouteRequest, ctx: &RouterContext) -> String {
+    let key = serde_json::json!({
+        "description": super::attributes::normalize(&request.description).trim(),
+        "category": request.category,
+        "size": request.size.map(|s| s.map(|v| (v * 1e4).round() / 1e4)),
+        "stage": request.stage,
+        "seed": request.seed,
+        "generator_version": procedural::GENERATOR_VERSION,
+        "sources": ctx.fingerprint(),
+    });
+    blake3::hash(key.to_string().as_bytes()).to_hex()[..32].to_string()
+}
+
+/// Routes one request (see the module docs).
+pub fn route(request: &RouteRequest, ctx: &RouterContext) -> Result<Routed, RouteError> {
+    if let Some(s) = request.size
+        && s.iter().any(|v| !(v.is_finite() && *v > 0.0))
+    {
+        return Err(RouteError::BadSize(s));
+    }
+    let key = key_of(request, ctx);
+    let memo = || ctx.memo.lock().unwrap_or_else(|p| p.into_inner());
+    if let Some(hit) = memo().get(&key) {
+        return Ok(Routed {
+            cached: true,
+            ..hit.clone()
+        });
+    }
+    if let Some(hit) = cached_route(&key, ctx) {
+        memo().insert(key, hit.clone());
+        return Ok(hit);
+    }
+    let routed = route_uncached(request, ctx)?;
+    let record = RoutedRecord {
+        primary: part_record(&routed.primary),
+        parts: routed.parts.iter().map(part_record).collect(),
+        deferred: routed.deferred.clone(),
+        notes: routed.notes.clone(),
+        attributes: routed.attributes.clone(),
+    };
+    if let Ok(v) = serde_json::to_value(&record) {
+        ctx.cache.put_route(&key, v);
+    }
+    memo().insert(key, routed.clone());
+    Ok(routed)
+}
+
+fn part_record(p: &RoutedAsset) -> PartRecord {
+    PartRecord {
+        id: p.asset.id.clone(),
+        category: p.category.clone(),
+        strategy: p.strategy,
+        count: p.count,
+        role: p.role,
+    }
+}
+
+fn cached_route(key: &str, ctx: &RouterContext) -> Option<Routed> {
+    let record: RoutedRecord = serde_json::from_value(ctx.cache.get_route(key)?).ok()?;
+    let load = |p: &PartRecord| -> Option<RoutedAsset> {
+        Some(RoutedAsset {
+            asset: ctx.cache.get(&p.id)?,
+            category: p.category.clone(),
+            strategy: p.strategy,
+            count: p.count,
+            role: p.role,
+        })
+    };
+    let primary = load(&record.primary)?;
+    let parts = record.parts.iter().map(load).collect::<Option<Vec<_>>>()?;
+    Some(Routed {
+        primary,
+        parts,
+        deferred: record.deferred,
+        notes: record.notes,
+        attributes: record.attributes,
+        cached: true,
+    })
+}
+
+/// The category a phrase names at a stage, or the reason it cannot be placed there.
+fn pick_category(phrase: &parse::Phrase, stage: Stage) -> Result<Option<&'static str>, RouteError> {
+    if phrase.categories.is_empty() {
+        return Ok(None);
+    }
+    let support_of = |c: &str| procedural::prior(c).map(|p| p.support);
+    if let Some(c) = phrase
+        .categories
+        .iter()
+        .find(|c| support_of(c) == Some(stage.support()))
+    {
+        return Ok(Some(c));
+    }
+    let first = phrase.categories[0];
+    let support = support_of(first).unwrap_or(SupportClass::Floor);
+    Err(RouteError::WrongStage {
+        noun: phrase.noun.clone().unwrap_or_default(),
+        category: first.replace('_', " "),
+        stage,
+        suggested: Stage::for_support(support),
+    })
+}
+
+fn route_uncached(request: &RouteRequest, ctx: &RouterContext) -> Result<Routed, RouteError> {
+    let text = request.description.trim();
+    if text.is_empty() && request.category.is_none() {
+        return Err(RouteError::Empty);
+    }
+    let parsed = parse::parse(text);
+    let mut main = parsed.main.clone();
+    if let Some(cat) = &request.category {
+        let p = parse::phrase(cat);
+        if p.categories.is_empty() {
+            main.unknown_noun = Some(cat.clone());
+            main.categories.clear();
+            main.noun = None;
+        } else {
+            main.categories = p.categories;
+            main.noun = p.noun;
+        }
+    }
+    let mut notes = Vec::new();
+    let mut parts_phrases: Vec<(parse::Phrase, Role)> = Vec::new();
+    // A compound noun names the container and default contents.
+    let mut compound_role = None;
+    if let Some((name, comp)) = &parsed.compound
+        && request.category.is_none()
+    {
+        if let Some(c) = procedural::resolve_category(&comp.container) {
+            main.categories = vec![c];
+            main.noun = Some(name.clone());
+        }
+        let container = procedural::prior(&comp.container).is_some_and(|p| p.container);
+        let role = Role::from_word(&comp.relation, container);
+        compound_role = Some(role);
+        if parsed.parts.is_empty() {
+            let n = main.count.unwrap_or(comp.count).max(1);
+            main.count = None;
+            let k = comp.contents.len().max(1) as u32;
+            for (i, c) in comp.contents.iter().enumerate() {
+                let share = n / k + u32::from((i as u32) < n % k);
+                if share == 0 {
+                    continue;
+                }
+                let mut p = parse::phrase(&c.replace('_', " "));
+                p.count = Some(share);
+                parts_phrases.push((p, role));
+            }
+        }
+    }
+    let category = pick_category(&main, request.stage)?;
+    if category.is_none() && main.unknown_noun.is_none() && main.group.is_empty() {
+        return Err(RouteError::Empty);
+    }
+    // A group word as the main noun ("some fruit"): build its first member.
+    let category = match (category, main.group.first()) {
+        (None, Some(g)) => procedural::resolve_category(g),
+        (c, _) => c,
+    };
+    let container = category
+        .and_then(procedural::prior)
+        .is_some_and(|p| p.container);
+    for (p, word) in &parsed.parts {
+        let role = compound_role.unwrap_or_else(|| Role::from_word(word, container));
+        parts_phrases.push((p.clone(), role));
+    }
+    let (asset, cat_name, strategy) = build_phrase(
+        &main,
+        category,
+        request.stage.support(),
+        request.size,
+        request.seed,
+        ctx,
+        &mut notes,
+    )?;
+    let primary = RoutedAsset {
+        asset,
+        category: cat_name.clone(),
+        strategy,
+        count: main.count.unwrap_or(1).max(1),
+        role: Role::Primary,
+    };
+    let mut parts = Vec::new();
+    let mut deferred = Vec::new();
+    for (i, (p, role)) in parts_phrases.iter().enumerate() {
+        // Group words ("fruits") expand to their members, sharing the count.
+        let members: Vec<(parse::Phrase, u32)> = if p.categories.is_empty() && !p.group.is_empty() {
+            let n = p.count.unwrap_or(3).max(1);
+            let k = p.group.len().min(n as usize).max(1);
+            p.group
+                .iter()
+                .take(k)
+                .enumerate()
+                .map(|(j, g)| {
+                    let mut q = parse::phrase(&g.replace('_', " "));
+                    q.attributes = p.attributes.clone();
+                    (q, n / k as u32 + u32::from((j as u32) < n % k as u32))
+                })
+                .collect()
+        } else {
+            vec![(
+                p.clone(),
+                p.count.unwrap_or(if p.plural { 3 } else { 1 }).max(1),
+            )]
+        };
+        for (j, (q, count)) in members.into_iter().enumerate() {
+            let support = q
+                .categories
+                .first()
+                .and_then(|c| procedural::prior(c))
+                .map(|p| p.support)
+                .unwrap_or(match role {
+                    Role::Around => SupportClass::Floor,
+                    _ => SupportClass::Surface,
+                });
+            let nested_now = match request.stage {
+                Stage::Furniture => support == SupportClass::Floor,
+                Stage::Manipuland => support == SupportClass::Surface,
+                Stage::Wall => support == SupportClass::Wall,
+                Stage::Ceiling => support == SupportClass::Ceiling,
+            };
+            let part_seed = request.seed.wrapping_add(1000 + 37 * i as u64 + j as u64);
+            if nested_now {
+                let stage = Stage::for_support(support);
+                let cat = pick_category(&q, stage).ok().flatten();
+                let (asset, name, strategy) =
+                    build_phrase(&q, cat, support, None, part_seed, ctx, &mut notes)?;
+                parts.push(RoutedAsset {
+                    asset,
+                    category: name,
+                    strategy,
+                    count,
+                    role: *role,
+                });
+            } else {
+                let stage = Stage::for_support(support);
+                let desc = if q.text.is_empty() {
+                    q.noun.clone().unwrap_or_default()
+                } else {
+                    q.text.clone()
+                };
+                notes.push(format!(
+                    "deferred: {count} x \"{desc}\" goes {} the {} at the {} stage",
+                    match role {
+                        Role::Inside => "inside",
+                        Role::Around => "around",
+                        _ => "on",
+                    },
+                    cat_name.replace('_', " "),
+                    stage.as_str()
+                ));
+                deferred.push(DeferredRequest {
+                    request: RouteRequest::new(&desc, stage, part_seed),
+                    count,
+                    relation: *role,
+                });
+            }
+        }
+    }
+    Ok(Routed {
+        primary,
+        parts,
+        deferred,
+        notes,
+        attributes: main.attributes,
+        cached: false,
+    })
+}
+
+#[cfg(test)]
+mod tests;
