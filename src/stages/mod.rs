@@ -4,6 +4,7 @@
 //! it through the same few operations (build an asset, add, move or remove an object).
 
 pub mod placement;
+pub mod plan;
 pub mod starter;
 
 use std::collections::BTreeMap;
