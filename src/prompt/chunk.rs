@@ -1,0 +1,780 @@
+//! Shallow parsing: one sentence's tokens become a list of chunks — noun phrases (with
+//! determiner, quantifier, number, ordinal, group word, modifiers and head), prepositions,
+//! verbs, "with", "each", separators. The interpreter turns chunks into mentions.
+//!
+//! Heads are found by longest match in the object lexicon and the room-type words; a noun the
+//! lexicon does not know is still a head when the phrase has a determiner, number or
+//! adjective in front of it, or continues a list (the open-vocabulary rule).
+
+use std::ops::Range;
+
+use super::attributes::{Attributes, modifier_at};
+use super::lexicon::Lexicon;
+use super::mentions::GroupKind;
+use super::tokens::{Token, TokenKind};
+use crate::knowledge::Knowledge;
+
+/// Pronouns the interpreter resolves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Pronoun {
+    /// "it"
+    It,
+    /// "them", "they"
+    Them,
+    /// "each other", "one another"
+    EachOther,
+    /// "one" as a subject ("where one displays ...")
+    One,
+    /// "the other" as a subject
+    Other,
+}
+
+/// What a noun phrase names.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Head {
+    /// An object noun.
+    Object {
+        /// Lexicon entry of the whole noun, if known.
+        entry: Option<usize>,
+        /// The noun as written, singular, lower case.
+        noun: String,
+        /// Canonical noun (entry noun, or `noun` when unknown).
+        canonical: String,
+        /// Lexicon entry of the last word when the whole noun is unknown.
+        head_entry: Option<usize>,
+    },
+    /// A room-type word.
+    Room {
+        /// Knowledge-base key.
+        key: String,
+        /// Words as written (singular).
+        words: String,
+    },
+    /// Wall, corner, ceiling, window, ... (lexicon landmark class).
+    Landmark(String),
+    /// Part of a parent: "level", "setting", with "top"/"other" when given.
+    Part {
+        /// `level` or `setting`.
+        kind: String,
+        /// "top", "bottom", "other", ...
+        which: Option<String>,
+    },
+    /// "people", "guests" (place settings).
+    Setting,
+    /// A pronoun.
+    Pronoun(Pronoun),
+    /// A feature of an object ("patterns", "fittings").
+    Feature,
+    /// Anything that is not an object ("area", "theme", an adjective alone).
+    NonObject,
+}
+
+/// A noun phrase.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Np {
+    /// Determiner class (`indefinite`, `definite`, `possessive`, `several`, `each`, ...).
+    pub det: Option<String>,
+    /// Quantifier class (`at_least`, `exactly`, ...).
+    pub quant: Option<String>,
+    /// Number written.
+    pub number: Option<u32>,
+    /// "10+".
+    pub plus: bool,
+    /// "first", "second".
+    pub ordinal: Option<u32>,
+    /// "a stack of", "pairs of".
+    pub group: Option<GroupKind>,
+    /// "arrangement", "set-up" after the noun.
+    pub group_suffix: bool,
+    /// "no TV", "not a single chair".
+    pub negated: bool,
+    /// "the other", "another".
+    pub other: bool,
+    /// Modifiers.
+    pub attrs: Attributes,
+    /// What it names.
+    pub head: Head,
+    /// Written in the plural.
+    pub plural: bool,
+    /// The word "one" was the number ("one bin").
+    pub one_word: bool,
+}
+
+impl Np {
+    /// True when the phrase has a determiner, quantifier or number (not a bare noun).
+    pub fn has_det(&self) -> bool {
+        self.det.is_some() || self.quant.is_some() || self.number.is_some() || self.group.is_some()
+    }
+
+    /// True for "the", "its", "this", "these", "each".
+    pub fn is_definite(&self) -> bool {
+        matches!(self.det.as_deref(), Some("definite" | "possessive" | "each"))
+    }
+}
+
+/// One chunk of a sentence.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Item {
+    /// A noun phrase.
+    Np(Box<Np>),
+    /// A preposition (lexicon class).
+    Prep(String),
+    /// A verb (lexicon class) and the word.
+    Verb(String, String),
+    /// "with"
+    With,
+    /// "without", "nor"
+    Without,
+    /// "each" standing alone (", each with", "two stools each")
+    Each,
+    /// ","
+    Comma,
+    /// "and", "or", "as well as"
+    And,
+    /// "which", "that", "where"
+    Relative,
+    /// "in total"
+    InTotal,
+    /// "set for" (place settings)
+    SetFor,
+    /// "for" (purpose)
+    For,
+    /// "including", "such as"
+    Including,
+    /// "of" after a noun ("a vase of flowers")
+    Of,
+    /// Anything else.
+    Other(String),
+}
+
+/// A chunk with its token range.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Chunk {
+    /// The chunk.
+    pub item: Item,
+    /// Tokens it covers.
+    pub range: Range<usize>,
+}
+
+fn word<'a>(tokens: &'a [Token], i: usize) -> Option<&'a str> {
+    tokens.get(i).filter(|t| t.is_word()).map(|t| t.text.as_str())
+}
+
+/// Chunks the tokens of one sentence.
+pub(crate) fn chunk_sentence(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], range: Range<usize>) -> Vec<Chunk> {
+    let mut out: Vec<Chunk> = Vec::new();
+    let sentence_start = range.start;
+    let end = range.end;
+    let mut i = range.start;
+    while i < end {
+        let t = &tokens[i];
+        let push = |out: &mut Vec<Chunk>, item: Item, n: usize| {
+            out.push(Chunk {
+                item,
+                range: i..i + n,
+            })
+        };
+        match t.kind {
+            TokenKind::Punct(',' | ':') => {
+                push(&mut out, Item::Comma, 1);
+                i += 1;
+                continue;
+            }
+            TokenKind::Punct('&' | '/') => {
+                push(&mut out, Item::And, 1);
+                i += 1;
+                continue;
+            }
+            TokenKind::Punct(_) => {
+                i += 1;
+                continue;
+            }
+            _ => {}
+        }
+        let w = t.text.as_str();
+        let next = word(tokens, i + 1);
+        let in_list = matches!(out.last().map(|c| &c.item), Some(Item::Comma | Item::And))
+            && out.iter().rev().skip(1).find(|c| !matches!(c.item, Item::Comma | Item::And)).is_some_and(|c| matches!(c.item, Item::Np(_)));
+        // Fixed phrases first.
+        if w == "in" && next == Some("total") {
+            push(&mut out, Item::InTotal, 2);
+            i += 2;
+            continue;
+        }
+        if w == "set" && next == Some("for") {
+            push(&mut out, Item::SetFor, 2);
+            i += 2;
+            continue;
+        }
+        if (w == "each" && next == Some("other")) || (w == "one" && next == Some("another")) {
+            let np = pronoun_np(Pronoun::EachOther);
+            push(&mut out, Item::Np(Box::new(np)), 2);
+            i += 2;
+            continue;
+        }
+        if matches!((w, next), ("as", Some("well"))) && word(tokens, i + 2) == Some("as") {
+            push(&mut out, Item::And, 3);
+            i += 3;
+            continue;
+        }
+        if matches!((w, next), ("along" | "together", Some("with"))) {
+            push(&mut out, Item::And, 2);
+            i += 2;
+            continue;
+        }
+        if w == "such" && next == Some("as") {
+            push(&mut out, Item::Including, 2);
+            i += 2;
+            continue;
+        }
+        match w {
+            "with" => {
+                push(&mut out, Item::With, 1);
+                i += 1;
+                continue;
+            }
+            "without" | "nor" | "lacking" | "excluding" => {
+                push(&mut out, Item::Without, 1);
+                i += 1;
+                continue;
+            }
+            "including" => {
+                push(&mut out, Item::Including, 1);
+                i += 1;
+                continue;
+            }
+            "for" => {
+                push(&mut out, Item::For, 1);
+                i += 1;
+                continue;
+            }
+            "of" => {
+                push(&mut out, Item::Of, 1);
+                i += 1;
+                continue;
+            }
+            "it" | "them" | "they" => {
+                let p = if w == "it" { Pronoun::It } else { Pronoun::Them };
+                push(&mut out, Item::Np(Box::new(pronoun_np(p))), 1);
+                i += 1;
+                continue;
+            }
+            _ => {}
+        }
+        if w == "each" {
+            // "each table" is a phrase; ", each with" and "two stools each" are not.
+            if let Some((np, j)) = parse_np(lex, kb, tokens, i, end, sentence_start, in_list)
+                && !matches!(np.head, Head::NonObject)
+            {
+                out.push(Chunk {
+                    item: Item::Np(Box::new(np)),
+                    range: i..j,
+                });
+                i = j;
+                continue;
+            }
+            push(&mut out, Item::Each, 1);
+            i += 1;
+            continue;
+        }
+        // A multi-word noun beats a verb or preposition reading of its first word
+        // ("display case", "set").
+        let noun_len = lex.noun_at(tokens, i).map_or(0, |(n, ..)| n);
+        let room_len = kb.room_type_at(tokens, i).map_or(0, |(n, _)| n);
+        let starts_np = noun_len >= 2
+            || room_len >= 2
+            || lex.determiner(w).is_some()
+            || lex.number(t).is_some()
+            || (lex.quantifier_at(tokens, i).is_some() && quantifier_fits(lex, tokens, i))
+            || matches!(w, "no" | "not");
+        if !starts_np {
+            if let Some((n, class)) = lex.preposition_at(tokens, i) {
+                push(&mut out, Item::Prep(class.to_string()), n);
+                i += n;
+                continue;
+            }
+            if let Some(class) = lex.verb(w)
+                && !(noun_len == 1 && !matches!(out.last().map(|c| &c.item), Some(Item::Np(_))) && class != "locate")
+            {
+                push(&mut out, Item::Verb(class.to_string(), w.to_string()), 1);
+                i += 1;
+                continue;
+            }
+            if lex.is_relative(w) {
+                push(&mut out, Item::Relative, 1);
+                i += 1;
+                continue;
+            }
+            if lex.is_conjunction(w) {
+                push(&mut out, Item::And, 1);
+                i += 1;
+                continue;
+            }
+        }
+        match parse_np(lex, kb, tokens, i, end, sentence_start, in_list) {
+            Some((np, j)) if j > i => {
+                out.push(Chunk {
+                    item: Item::Np(Box::new(np)),
+                    range: i..j,
+                });
+                i = j;
+            }
+            _ => {
+                if let Some(class) = lex.verb(w) {
+                    push(&mut out, Item::Verb(class.to_string(), w.to_string()), 1);
+                } else if lex.is_negation(w) {
+                    push(&mut out, Item::Without, 1);
+                } else {
+                    push(&mut out, Item::Other(w.to_string()), 1);
+                }
+                i += 1;
+            }
+        }
+    }
+    out
+}
+
+fn pronoun_np(p: Pronoun) -> Np {
+    Np {
+        det: None,
+        quant: None,
+        number: None,
+        plus: false,
+        ordinal: None,
+        group: None,
+        group_suffix: false,
+        negated: false,
+        other: false,
+        attrs: Attributes::default(),
+        head: Head::Pronoun(p),
+        plural: matches!(p, Pronoun::Them | Pronoun::EachOther),
+        one_word: false,
+    }
+}
+
+/// "about", "over", "around" are quantifiers only before a number.
+fn quantifier_fits(lex: &Lexicon, tokens: &[Token], i: usize) -> bool {
+    match lex.quantifier_at(tokens, i) {
+        Some((n, "about_number" | "more_than_number")) => tokens.get(i + n).and_then(|t| lex.number(t)).is_some(),
+        Some(_) => true,
+        None => false,
+    }
+}
+
+/// Parses a noun phrase starting at `i`; returns it and the index after it.
+pub(crate) fn parse_np(
+    lex: &Lexicon,
+    kb: &Knowledge,
+    tokens: &[Token],
+    i: usize,
+    end: usize,
+    sentence_start: usize,
+    in_list: bool,
+) -> Option<(Np, usize)> {
+    let mut np = Np {
+        det: None,
+        quant: None,
+        number: None,
+        plus: false,
+        ordinal: None,
+        group: None,
+        group_suffix: false,
+        negated: false,
+        other: false,
+        attrs: Attributes::default(),
+        head: Head::NonObject,
+        plural: false,
+        one_word: false,
+    };
+    let mut j = i;
+    let at = |j: usize| if j < end { word(tokens, j) } else { None };
+    if matches!(at(j), Some("no" | "not")) {
+        np.negated = true;
+        j += 1;
+    }
+    // Quantifier, determiner, quantifier again, number, ordinal — in any sensible order.
+    for _ in 0..4 {
+        if j >= end {
+            break;
+        }
+        if np.quant.is_none()
+            && let Some((n, class)) = lex.quantifier_at(tokens, j)
+            && quantifier_fits(lex, tokens, j)
+        {
+            np.quant = Some(class.to_string());
+            j += n;
+            continue;
+        }
+        if let Some(w) = at(j)
+            && np.det.is_none()
+            && np.number.is_none()
+            && let Some(class) = lex.determiner(w)
+        {
+            // "each" followed by nothing nounish is not a determiner here.
+            if class == "other" || class == "another" {
+                np.other = true;
+            }
+            np.det = Some(if class == "other" { "definite".to_string() } else { class.to_string() });
+            j += 1;
+            if w == "the" && at(j) == Some("other") {
+                np.other = true;
+                j += 1;
+            }
+            continue;
+        }
+        if np.number.is_none()
+            && let Some(t) = tokens.get(j)
+            && let Some(n) = lex.number(t)
+        {
+            np.one_word = t.text == "one";
+            np.number = Some(n);
+            j += 1;
+            if tokens.get(j).is_some_and(|t| t.is_punct('+')) {
+                np.plus = true;
+                j += 1;
+            }
+            continue;
+        }
+        if let Some(w) = at(j)
+            && np.ordinal.is_none()
+            && let Some(o) = lex.ordinal(w)
+        {
+            np.ordinal = Some(o);
+            j += 1;
+            continue;
+        }
+        break;
+    }
+    // "one" as a subject pronoun: "where one displays ..., the other displays ...".
+    if let Some(w) = at(j)
+        && (np.one_word || (np.other && np.number.is_none()))
+        && lex.verb(w).is_some()
+        && lex.noun_at(tokens, j).is_none()
+    {
+        np.head = Head::Pronoun(if np.one_word { Pronoun::One } else { Pronoun::Other });
+        return Some((np, j));
+    }
+    // Group words: "a stack of", "pairs of".
+    if let Some(w) = at(j)
+        && let Some(class) = lex.group(w)
+        && at(j + 1) == Some("of")
+        && let Some(kind) = GroupKind::from_class(class)
+    {
+        np.group = Some(kind);
+        j += 2;
+        if kind == GroupKind::Pair {
+            // "5 pairs of shoes": the number counts pairs.
+        } else if let Some(t) = tokens.get(j)
+            && let Some(n) = lex.number(t)
+        {
+            np.number = Some(n);
+            j += 1;
+        } else if let Some((n, class)) = lex.quantifier_at(tokens, j)
+            && quantifier_fits(lex, tokens, j)
+        {
+            np.quant = Some(class.to_string());
+            j += n;
+            if let Some(t) = tokens.get(j)
+                && let Some(num) = lex.number(t)
+            {
+                np.number = Some(num);
+                j += 1;
+            }
+        } else if np.group != Some(GroupKind::Pair) {
+            // "a stack of books": the count is of the books, not of stacks.
+            np.number = None;
+            if np.det.as_deref() == Some("indefinite") {
+                np.det = None;
+            }
+        }
+    }
+    // Top/bottom/other before a part noun ("the top level", "the other two levels").
+    let mut which: Option<String> = None;
+    if let Some(w) = at(j)
+        && matches!(w, "top" | "bottom" | "middle" | "lower" | "upper" | "remaining" | "last")
+        && at(j + 1).is_some_and(|n| lex.part(n).is_some())
+    {
+        which = Some(w.to_string());
+        j += 1;
+    }
+    if np.other && which.is_none() {
+        which = Some("other".to_string());
+    }
+    // Modifiers.
+    while j < end {
+        match modifier_at(lex, kb, tokens, j, sentence_start) {
+            Some(m) if j + m.len <= end => {
+                np.attrs.add(&m);
+                j += m.len;
+            }
+            _ => break,
+        }
+    }
+    let evidence = np.has_det() || np.ordinal.is_some() || !np.attrs.modifiers.is_empty() || np.negated;
+    let w = at(j)?;
+    // Head.
+    let noun = lex.noun_at(tokens, j).filter(|(n, ..)| j + n <= end);
+    let room = kb.room_type_at(tokens, j).filter(|(n, _)| j + n <= end);
+    let noun_len = noun.map_or(0, |(n, ..)| n);
+    let room_len = room.map_or(0, |(n, _)| n);
+    let bare_ambiguous = noun_len == 1 && lex.is_ambiguous_bare(w) && !evidence && !in_list;
+    if room_len > 0 && room_len >= noun_len {
+        let (n, key) = room.unwrap_or((0, ""));
+        let words: Vec<String> = tokens[j..j + n].iter().map(|t| t.text.clone()).collect();
+        let mut ws = words.clone();
+        if let Some(last) = ws.last_mut() {
+            *last = lex.singular(last);
+        }
+        np.plural = lex.is_plural(&words[n - 1]);
+        np.head = Head::Room {
+            key: key.to_string(),
+            words: ws.join(" "),
+        };
+        return Some((np, j + n));
+    }
+    if let Some((n, entry, plural)) = noun
+        && !bare_ambiguous
+    {
+        let mut start = j;
+        let (mut n, mut entry, mut plural) = (n, entry, plural);
+        // Noun-noun compounds: "glass table" — the first noun modifies the second.
+        while !plural
+            && start + n < end
+            && let Some((n2, e2, p2)) = lex.noun_at(tokens, start + n)
+            && start + n + n2 <= end
+            && lex.verb(&tokens[start + n].text).is_none()
+        {
+            let text: Vec<&str> = tokens[start..start + n].iter().map(|t| t.raw.as_str()).collect();
+            let text = text.join(" ");
+            if let Some(mat) = lex.material(&tokens[start].text)
+                && n == 1
+            {
+                np.attrs.materials.push(mat.to_string());
+            }
+            np.attrs.modifiers.push(text);
+            start += n;
+            n = n2;
+            entry = e2;
+            plural = p2;
+        }
+        // A part noun with an ordinal or "top": "the top shelf", "the second shelf".
+        let head_word = tokens[start + n - 1].text.as_str();
+        if (np.ordinal.is_some() || which.is_some())
+            && lex.part(head_word).is_some_and(|p| p == "level_if_parent")
+        {
+            np.head = Head::Part {
+                kind: "level".to_string(),
+                which,
+            };
+            np.plural = plural;
+            return Some((np, start + n));
+        }
+        let mut written: Vec<String> = tokens[start..start + n].iter().map(|t| t.text.clone()).collect();
+        if let Some(last) = written.last_mut() {
+            *last = lex.singular(last);
+        }
+        let canonical = lex.objects.get(entry).map_or_else(|| written.join(" "), |e| e.noun.clone());
+        np.plural = plural;
+        np.head = Head::Object {
+            entry: Some(entry),
+            noun: written.join(" "),
+            canonical,
+            head_entry: None,
+        };
+        let mut k = start + n;
+        if let Some(s) = at(k)
+            && lex.is_group_suffix(s)
+        {
+            np.group_suffix = true;
+            k += 1;
+        }
+        return Some((np, k));
+    }
+    if let Some(class) = lex.landmark(w) {
+        np.plural = lex.is_plural(w);
+        np.head = Head::Landmark(class.to_string());
+        return Some((np, j + 1));
+    }
+    if let Some(part) = lex.part(w)
+        && part != "level_if_parent"
+        && part != "top"
+    {
+        let kind = if part == "setting" { "setting" } else { "level" };
+        np.plural = lex.is_plural(w);
+        np.head = Head::Part {
+            kind: kind.to_string(),
+            which,
+        };
+        // "place settings"
+        return Some((np, j + 1));
+    }
+    if lex.is_setting_noun(w) {
+        np.plural = true;
+        np.head = Head::Setting;
+        return Some((np, j + 1));
+    }
+    if lex.is_feature_noun(w) {
+        np.head = Head::Feature;
+        return Some((np, j + 1));
+    }
+    if lex.is_non_object(w) {
+        let mut k = j;
+        while at(k).is_some_and(|x| lex.is_non_object(x)) {
+            k += 1;
+        }
+        np.head = Head::NonObject;
+        return Some((np, k));
+    }
+    // Open vocabulary: up to three unknown words, the last is the head.
+    if evidence || in_list {
+        let mut k = j;
+        let mut words: Vec<String> = Vec::new();
+        while k < end && words.len() < 3 {
+            let Some(x) = at(k) else { break };
+            if lex.is_function_word(x)
+                || lex.landmark(x).is_some()
+                || lex.is_setting_noun(x)
+                || lex.is_non_object(x)
+                || lex.number(&tokens[k]).is_some()
+            {
+                break;
+            }
+            if k > j && lex.is_feature_noun(x) {
+                np.head = Head::Feature;
+                return Some((np, k + 1));
+            }
+            if k > j
+                && let Some((n2, e2, p2)) = lex.noun_at(tokens, k)
+                && k + n2 <= end
+            {
+                np.attrs.modifiers.extend(tokens[j..k].iter().map(|t| t.raw.clone()));
+                let mut written: Vec<String> = tokens[k..k + n2].iter().map(|t| t.text.clone()).collect();
+                if let Some(last) = written.last_mut() {
+                    *last = lex.singular(last);
+                }
+                np.plural = p2;
+                np.head = Head::Object {
+                    entry: Some(e2),
+                    noun: written.join(" "),
+                    canonical: lex.objects.get(e2).map_or_else(|| written.join(" "), |e| e.noun.clone()),
+                    head_entry: None,
+                };
+                return Some((np, k + n2));
+            }
+            if k > j
+                && let Some((n2, key)) = kb.room_type_at(tokens, k)
+            {
+                np.attrs.modifiers.extend(tokens[j..k].iter().map(|t| t.raw.clone()));
+                let mut ws: Vec<String> = tokens[k..k + n2].iter().map(|t| t.text.clone()).collect();
+                if let Some(last) = ws.last_mut() {
+                    *last = lex.singular(last);
+                }
+                np.head = Head::Room {
+                    key: key.to_string(),
+                    words: ws.join(" "),
+                };
+                return Some((np, k + n2));
+            }
+            words.push(x.to_string());
+            k += 1;
+        }
+        let last_ok = words
+            .last()
+            .is_some_and(|l| !l.ends_with("ly") && !l.ends_with("ing") && l.chars().any(char::is_alphabetic));
+        if last_ok {
+            let last = words.last().cloned().unwrap_or_default();
+            np.plural = lex.is_plural(&last);
+            let mut sing = words.clone();
+            if let Some(l) = sing.last_mut() {
+                *l = lex.singular(l);
+            }
+            let head_entry = sing.last().and_then(|l| lex.entry_index(l));
+            let noun = sing.join(" ");
+            np.head = Head::Object {
+                entry: None,
+                noun: noun.clone(),
+                canonical: noun,
+                head_entry,
+            };
+            return Some((np, k));
+        }
+    }
+    if j > i && (evidence || !np.attrs.modifiers.is_empty()) {
+        // Only modifiers ("leather and metal accents": "leather" alone).
+        np.head = Head::NonObject;
+        return Some((np, j));
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::knowledge::knowledge;
+    use crate::prompt::lexicon::lexicon;
+    use crate::prompt::tokens::{lex, sentences};
+
+    fn chunks(text: &str) -> Vec<Item> {
+        let t = lex(text);
+        let s = sentences(&t);
+        chunk_sentence(lexicon(), knowledge(), &t, s[0].clone())
+            .into_iter()
+            .map(|c| c.item)
+            .collect()
+    }
+
+    fn nps(text: &str) -> Vec<Np> {
+        chunks(text)
+            .into_iter()
+            .filter_map(|i| match i {
+                Item::Np(np) => Some(*np),
+                _ => None,
+            })
+            .collect()
+    }
+
+    fn canon(np: &Np) -> &str {
+        match &np.head {
+            Head::Object { canonical, .. } => canonical,
+            Head::Room { key, .. } => key,
+            _ => "",
+        }
+    }
+
+    #[test]
+    fn commas_scope_numbers() {
+        let n = nps("A kitchen with four chairs, plates and mugs.");
+        assert_eq!(canon(&n[0]), "kitchen");
+        assert_eq!((canon(&n[1]), n[1].number), ("chair", Some(4)));
+        assert_eq!((canon(&n[2]), n[2].number, n[2].plural), ("plate", None, true));
+        assert_eq!((canon(&n[3]), n[3].number), ("mug", None));
+    }
+
+    #[test]
+    fn groups_pairs_and_quantifiers() {
+        let n = nps("exactly 5 pairs of shoes and a stack of 8 books and at least 10 cans");
+        assert_eq!(n[0].group, Some(GroupKind::Pair));
+        assert_eq!((n[0].number, n[0].quant.as_deref()), (Some(5), Some("exactly")));
+        assert_eq!((canon(&n[1]), n[1].number, n[1].group), ("book", Some(8), Some(GroupKind::Stack)));
+        assert_eq!((n[2].number, n[2].quant.as_deref()), (Some(10), Some("at_least")));
+    }
+
+    #[test]
+    fn open_vocabulary_and_rooms() {
+        let n = nps("a golden velociraptor skeleton near two exam rooms");
+        assert_eq!(canon(&n[0]), "velociraptor skeleton");
+        assert_eq!(n[0].attrs.colors, ["golden"]);
+        assert_eq!((canon(&n[1]), n[1].number), ("exam_room", Some(2)));
+    }
+
+    #[test]
+    fn verbs_prepositions_and_pronouns() {
+        let c = chunks("A dining table with four chairs surrounding it.");
+        assert!(c.contains(&Item::With));
+        assert!(c.contains(&Item::Prep("around".into())));
+        assert!(matches!(c.last(), Some(Item::Np(np)) if np.head == Head::Pronoun(Pronoun::It)));
+        let c = chunks("where one displays pet food bags and the other displays pet toys");
+        assert!(c.iter().any(|i| matches!(i, Item::Np(np) if np.head == Head::Pronoun(Pronoun::One))));
+        assert!(c.iter().any(|i| matches!(i, Item::Np(np) if np.head == Head::Pronoun(Pronoun::Other))));
+    }
+}
