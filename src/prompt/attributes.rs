@@ -272,7 +272,8 @@ pub(crate) fn modifier_at(
     if lex.is_adjective(w) || lex.density(w).is_some() || lex.density_room_only(w).is_some() {
         return Some(single(t, ModKind::Adjective(w.to_string())));
     }
-    if w.contains('-') || (w.len() > 4 && w.ends_with("ed")) {
+    let next_wordish = tokens.get(at + 1).is_some_and(|u| u.is_word() && !lex.is_function_word(&u.text));
+    if w.contains('-') || (w.len() > 4 && w.ends_with("ed")) || (w.len() > 5 && w.ends_with("ing") && next_wordish) {
         return Some(single(t, ModKind::Adjective(w.to_string())));
     }
     // A proper name inside a sentence ("a Jurassic Park poster"): a theme.

@@ -42,9 +42,14 @@ fn requested_counts(reading: &Reading) -> BTreeMap<String, u32> {
         .mentions
         .iter()
         .filter(|m| m.negated)
-        .map(|m| m.category.as_str())
+        .filter_map(|m| procedural::resolve_category(&m.category))
         .collect();
     for m in reading.mentions.iter().filter(|m| !m.negated) {
+        // Mention categories are canonical nouns; the starter builds only what its
+        // generators know.
+        let Some(category) = procedural::resolve_category(&m.category) else {
+            continue;
+        };
         let n = match m.count {
             prompt::Count::Exactly(n) | prompt::Count::AtLeast(n) => n,
             prompt::Count::Several => {
@@ -55,15 +60,17 @@ fn requested_counts(reading: &Reading) -> BTreeMap<String, u32> {
                 }
             }
         };
-        let e = counts.entry(m.category.clone()).or_insert(0);
+        let e = counts.entry(category.to_string()).or_insert(0);
         *e = (*e).max(n);
     }
     let has_furniture = counts
         .keys()
         .any(|c| procedural::prior(c).is_some_and(|p| p.support == SupportClass::Floor));
     if !has_furniture && let Some(info) = prompt::room_types().get(&reading.room_type) {
-        for (cat, n) in &info.defaults {
-            counts.entry(cat.clone()).or_insert(*n);
+        for (noun, n) in &info.defaults {
+            if let Some(cat) = procedural::resolve_category(noun) {
+                counts.entry(cat.to_string()).or_insert(*n);
+            }
         }
     }
     counts.retain(|c, n| *n > 0 && !negated.contains(&c.as_str()));
