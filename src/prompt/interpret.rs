@@ -736,7 +736,8 @@ impl<'a> Interp<'a> {
         } else {
             np.ordinal.map(|o| o.saturating_sub(1))
         };
-        let definite = np.is_definite() || np.other;
+        let another = np.det.as_deref() == Some("another");
+        let definite = np.is_definite() || (np.other && !another);
         let existing = |me: &Self| -> Option<usize> {
             let last = |s: &str| s.rsplit(' ').next().unwrap_or(s).to_string();
             let first = |s: &str| s.split(' ').next().unwrap_or(s).to_string();
@@ -779,6 +780,14 @@ impl<'a> Interp<'a> {
                 Count::AtLeast(x) => Count::AtLeast(x + 1),
                 _ => Count::Exactly(n + 1),
             };
+            // What was said about "one X" before was about the first of them.
+            for other in &mut self.mentions {
+                for rel in &mut other.relations {
+                    if rel.target == Target::Mention(m) && rel.instance.is_none() {
+                        rel.instance = Some(0);
+                    }
+                }
+            }
             return Ref {
                 m,
                 instance: Some(n),
@@ -902,6 +911,15 @@ impl<'a> Interp<'a> {
                 }
             }
         }
+        if kind == RelationKind::Flanking {
+            // "a nightstand on each side of the bed": one per side.
+            for a in &attach {
+                let m = &mut self.mentions[a.m];
+                if m.count == Count::Exactly(1) && !m.definite {
+                    m.count = Count::Exactly(2);
+                }
+            }
+        }
         for a in &attach {
             if let Target::Mention(t) = target
                 && p.each
@@ -943,6 +961,9 @@ impl<'a> Interp<'a> {
         if let Some(kind) = kind {
             if let Some(parent) = ctx_parent {
                 for f in c.focus.clone() {
+                    if kind == RelationKind::Flanking && self.mentions[f.m].count == Count::Exactly(1) {
+                        self.mentions[f.m].count = Count::Exactly(2);
+                    }
                     self.add_relation(f.m, Relation::new(kind, Target::Mention(parent)));
                 }
             }
@@ -999,6 +1020,12 @@ impl<'a> Interp<'a> {
         let subject_is_room = finite && c.subject_is_room;
         match class {
             "possess" | "display" | "fill_with" | "decorate_with" => {
+                if matches!(class, "fill_with" | "decorate_with")
+                    && let Some(Chunk { item: Item::Prep(p), .. }) = chunks.get(k + 1)
+                    && p == "in"
+                {
+                    c.skip_next = true;
+                }
                 if matches!(c.ctx, Ctx::Setting(_)) {
                     // "each setting has ...": stays per setting.
                 } else if subject_is_room || subject.is_empty() || (finite && c.zone) {
@@ -1020,6 +1047,7 @@ impl<'a> Interp<'a> {
                 }
             }
             "cover" => c.ctx = Ctx::Cover(subject),
+
             "styled" | "inspired" => {
                 let targets = if subject_is_room || subject.is_empty() { Vec::new() } else { subject };
                 self.push_ctx(c, Ctx::StyleOf(targets));
@@ -1038,6 +1066,8 @@ impl<'a> Interp<'a> {
     // ---- with, each, settings, totals ---------------------------------------------------
 
     fn with(&mut self, c: &mut Clause) {
+        // "without a rug, with a bed": the negation ends.
+        c.negate = false;
         if matches!(c.ctx, Ctx::Setting(_)) {
             return;
         }
