@@ -211,6 +211,20 @@ fn pct(a: usize, b: usize) -> f64 {
     if b == 0 { 100.0 } else { 100.0 * a as f64 / b as f64 }
 }
 
+fn report(title: &str, s: &Score) {
+    println!("{title} ({} prompts)", s.prompts);
+    println!("  objects found      {:4}/{:4}  {:5.1}%", s.found, s.objects, pct(s.found, s.objects));
+    println!("  counts right       {:4}/{:4}  {:5.1}%  (of objects found)", s.counts, s.found, pct(s.counts, s.found));
+    println!("  relations right    {:4}/{:4}  {:5.1}%", s.relations_right, s.relations, pct(s.relations_right, s.relations));
+    println!("  styles right       {:4}/{:4}  {:5.1}%", s.styles_right, s.styles, pct(s.styles_right, s.styles));
+    println!("  negations right    {:4}/{:4}  {:5.1}%", s.negations_right, s.negations, pct(s.negations_right, s.negations));
+    println!("  rooms right        {:4}/{:4}  {:5.1}%  (scope, room types, en-suite parents)", s.rooms_right, s.prompts, pct(s.rooms_right, s.prompts));
+    println!("  extra mentions     {:4}       (precision {:5.1}%)", s.spurious, pct(s.found, s.found + s.spurious));
+    for m in &s.misses {
+        println!("  miss: {m}");
+    }
+}
+
 #[test]
 fn reader_table_on_dev_prompts() {
     let (prompts, exp) = fixtures();
@@ -222,16 +236,7 @@ fn reader_table_on_dev_prompts() {
         let text = &prompts.iter().find(|(i, _)| i == id).unwrap_or_else(|| panic!("no dev prompt {id}")).1;
         check(id, &prompt::read(text), e, &mut s);
     }
-    println!("reader accuracy on {} dev prompts", s.prompts);
-    println!("  objects found      {:4}/{:4}  {:5.1}%", s.found, s.objects, pct(s.found, s.objects));
-    println!("  counts right       {:4}/{:4}  {:5.1}%  (of objects found)", s.counts, s.found, pct(s.counts, s.found));
-    println!("  relations right    {:4}/{:4}  {:5.1}%", s.relations_right, s.relations, pct(s.relations_right, s.relations));
-    println!("  styles right       {:4}/{:4}  {:5.1}%", s.styles_right, s.styles, pct(s.styles_right, s.styles));
-    println!("  rooms right        {:4}/{:4}  {:5.1}%  (scope, room types, en-suite parents)", s.rooms_right, s.prompts, pct(s.rooms_right, s.prompts));
-    println!("  extra mentions     {:4}       (precision {:5.1}%)", s.spurious, pct(s.found, s.found + s.spurious));
-    for m in &s.misses {
-        println!("  miss: {m}");
-    }
+    report("reader accuracy on the dev prompts (the rules were tuned on these)", &s);
     // Floors at the measured level: a change that makes the reader worse fails here.
     assert!(pct(s.found, s.objects) >= 99.0, "objects {}/{}", s.found, s.objects);
     assert!(pct(s.counts, s.found) >= 98.0, "counts {}/{}", s.counts, s.found);
@@ -256,4 +261,22 @@ fn reader_table_on_synthetic_prompts() {
     }
     assert!(s.misses.is_empty(), "{:#?}", s.misses);
     assert!(s.negations >= 4);
+}
+
+#[test]
+fn reader_table_on_held_out_prompts() {
+    let exp: Value = serde_json::from_str(&std::fs::read_to_string("tests/fixtures/reader_heldout.json").unwrap()).unwrap();
+    let mut s = Score::default();
+    for e in exp["prompts"].as_array().unwrap() {
+        let id = e["id"].as_str().unwrap();
+        let r = prompt::read(e["prompt"].as_str().unwrap());
+        check(id, &r, e, &mut s);
+    }
+    // Their first run (before any fix they prompted) scored objects 91.5%, counts 98.1%,
+    // relations 80.8%, rooms 96%: that is the honest estimate; these floors guard the fixes.
+    report("reader accuracy on held-out prompts", &s);
+    assert!(pct(s.found, s.objects) >= 97.0, "objects {}/{}", s.found, s.objects);
+    assert!(pct(s.counts, s.found) >= 97.0, "counts {}/{}", s.counts, s.found);
+    assert!(pct(s.relations_right, s.relations) >= 95.0, "relations {}/{}", s.relations_right, s.relations);
+    assert_eq!(s.rooms_right, s.prompts, "room structure");
 }

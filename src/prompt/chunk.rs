@@ -557,6 +557,41 @@ pub(crate) fn parse_np(
             entry = e2;
             plural = p2;
         }
+        // A known noun followed by an unknown noun ends there: "ball pit", "luggage rack".
+        if !plural
+            && start + n < end
+            && let Some(x) = at(start + n)
+            && lex.noun_at(tokens, start + n).is_none()
+            && lex.preposition_at(tokens, start + n).is_none()
+            && lex.verb(x).is_none()
+            && kb.room_type_at(tokens, start + n).is_none()
+            && !lex.is_function_word(x)
+            && lex.landmark(x).is_none()
+            && !lex.is_feature_noun(x)
+            && !lex.is_non_object(x)
+            && !lex.is_adjective(x)
+            && lex.number(&tokens[start + n]).is_none()
+            && !x.ends_with("ing")
+            && !x.ends_with("ed")
+            && !x.ends_with("ly")
+            && x.chars().all(|ch| ch.is_alphabetic())
+            && at(start + n + 1).is_none_or(|y| lex.is_function_word(y) || lex.landmark(y).is_some())
+        {
+            let mut written: Vec<String> = tokens[start..start + n + 1].iter().map(|t| t.text.clone()).collect();
+            let plural2 = lex.is_plural(x);
+            if let Some(last) = written.last_mut() {
+                *last = lex.singular(last);
+            }
+            let noun = written.join(" ");
+            np.plural = plural2;
+            np.head = Head::Object {
+                entry: None,
+                noun: noun.clone(),
+                canonical: noun,
+                head_entry: lex.entry_index(&lex.singular(x)),
+            };
+            return Some((np, start + n + 1));
+        }
         // A part noun with an ordinal or "top": "the top shelf", "the second shelf".
         let head_word = tokens[start + n - 1].text.as_str();
         if (np.ordinal.is_some() || which.is_some())
@@ -591,6 +626,15 @@ pub(crate) fn parse_np(
         return Some((np, k));
     }
     if let Some(class) = lex.landmark(w) {
+        // "the front wall", "the back corner": the last landmark word is the head.
+        if let Some(next) = at(j + 1)
+            && let Some(c2) = lex.landmark(next)
+            && matches!(c2, "wall" | "walls" | "corner" | "window" | "door")
+        {
+            np.plural = lex.is_plural(next);
+            np.head = Head::Landmark(c2.to_string());
+            return Some((np, j + 2));
+        }
         np.plural = lex.is_plural(w);
         np.head = Head::Landmark(class.to_string());
         return Some((np, j + 1));

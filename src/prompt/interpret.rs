@@ -38,8 +38,8 @@ impl Ref {
 enum Ctx {
     /// Contents of the room.
     Room,
-    /// "X has/holds/with ...": contents of X (true when opened by "with" or a participle).
-    Holder(Vec<Ref>, bool),
+    /// "X has/holds/with ...": contents of X, and how they were introduced.
+    Holder(Vec<Ref>, Intro),
     /// ", each with/containing ...": per-parent contents.
     Each(Vec<Ref>),
     /// "each setting has", "set for 4 with ...": per place setting of a table.
@@ -50,6 +50,17 @@ enum Ctx {
     Cover(Vec<Ref>),
     /// "styled like Y", "inspired by Y": Y gives styles.
     StyleOf(Vec<Ref>),
+}
+
+/// How a holder's contents were introduced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Intro {
+    /// "X with Y": on X when X carries things, in X when it only contains them.
+    With,
+    /// "X has Y", "X holding Y"; `true` for "contains".
+    Verb(bool),
+    /// "X of Y".
+    Of,
 }
 
 /// A preposition waiting for its object.
@@ -88,6 +99,7 @@ struct Clause {
     room_with: bool,
     rel_scope: bool,
     pronoun_subject: bool,
+    of_once: bool,
     list_since_comma: Vec<Ref>,
 }
 
@@ -118,6 +130,7 @@ impl Clause {
             room_with: false,
             rel_scope: false,
             pronoun_subject: false,
+            of_once: false,
             list_since_comma: Vec::new(),
         }
     }
@@ -222,6 +235,11 @@ impl<'a> Interp<'a> {
                         }
                     }
                     c.pending = None;
+                    if c.of_once {
+                        // "a cup of tea and two books": the "of" phrase is over.
+                        c.of_once = false;
+                        self.pop_ctx(&mut c);
+                    }
                     c.sep_was_comma = comma || (c.after_sep && c.sep_was_comma);
                     c.after_sep = true;
                     if self.new_clause_follows(chunks, k) {
@@ -238,16 +256,18 @@ impl<'a> Interp<'a> {
                 }
                 Item::Including => {
                     if let Some(f) = c.last_np.first().cloned() {
-                        let ctx = if self.mentions[f.m].generic { Ctx::Members(f.m) } else { Ctx::Holder(vec![f], true) };
+                        let ctx = if self.mentions[f.m].generic { Ctx::Members(f.m) } else { Ctx::Holder(vec![f], Intro::With) };
                         self.push_ctx(&mut c, ctx);
                     }
                 }
                 Item::Of => {
-                    // "a vase of flowers": contents.
+                    // "a vase of flowers", "shelves of stuffed animals": contents, for the
+                    // next phrase only.
                     if let Some(f) = c.focus.first().cloned()
-                        && self.mentions[f.m].container
+                        && (self.mentions[f.m].container || self.lex.lookup(&self.mentions[f.m].category).is_some_and(|e| e.holds))
                     {
-                        self.push_ctx(&mut c, Ctx::Holder(vec![f], true));
+                        self.push_ctx(&mut c, Ctx::Holder(vec![f], Intro::Of));
+                        c.of_once = true;
                     }
                 }
                 Item::Other(_) => {}
@@ -279,7 +299,10 @@ impl<'a> Interp<'a> {
         j += 1;
         while let Some(c) = chunks.get(j) {
             match &c.item {
-                Item::Verb(class, _) => return class != "styled" && class != "inspired",
+                // A participle ("a bookshelf filled with ...") does not start a clause.
+                Item::Verb(class, word) => {
+                    return class != "styled" && class != "inspired" && !word.ends_with("ed") && !word.ends_with("ing");
+                }
                 Item::Np(_) | Item::With | Item::Prep(_) | Item::And | Item::Of => j += 1,
                 _ => return false,
             }
@@ -379,6 +402,10 @@ impl<'a> Interp<'a> {
             c.ctx = Ctx::Room;
         } else if c.verb.is_none() && c.subject.is_empty() {
             c.subject_is_room = true;
+        } else {
+            // "a waiting area with four chairs" inside a room: a zone, not a holder.
+            c.focus.clear();
+            c.last_prep_obj = None;
         }
     }
 
@@ -541,6 +568,21 @@ impl<'a> Interp<'a> {
         }
         // A separator ends a "with" list unless the next phrase is bare ("a monitor,
         // keyboard, and chair") or was joined by "and" (no comma).
+        if c.after_sep && c.sep_was_comma && np.has_det() && matches!(c.ctx, Ctx::Each(_)) {
+            // ", each with two chairs, a counter with ...": the counter is not per table.
+            let keeps = match &np.head {
+                Head::Object { entry, canonical, .. } => {
+                    entry.and_then(|e| self.lex.objects.get(e)).is_none_or(|e| e.support == Support::Surface)
+                        || canonical.ends_with("chair")
+                        || canonical.ends_with("stool")
+                }
+                _ => true,
+            };
+            if !keeps {
+                c.ctx = Ctx::Room;
+                c.stack.clear();
+            }
+        }
         if c.after_sep && matches!(c.ctx, Ctx::Holder(..)) && !c.stack.is_empty() {
             let bare = !np.has_det();
             let small = match &np.head {
@@ -559,6 +601,10 @@ impl<'a> Interp<'a> {
             c.subject.push(r.clone());
         }
         self.apply_ctx(c, &r, np);
+        if c.of_once {
+            c.of_once = false;
+            self.pop_ctx(c);
+        }
         if c.zone && matches!(c.ctx, Ctx::Room) && c.verb.is_some() {
             for rel in c.zone_relations.clone() {
                 self.add_relation(r.m, rel);
@@ -617,12 +663,13 @@ impl<'a> Interp<'a> {
     /// Applies the clause's context to a new content phrase.
     fn apply_ctx(&mut self, c: &mut Clause, r: &Ref, np: &Np) {
         match c.ctx.clone() {
-            Ctx::Holder(parents, from_with) => {
+            Ctx::Holder(parents, intro) => {
+                let from_with = intro == Intro::With;
                 for p in &parents {
                     if p.m == r.m {
                         continue;
                     }
-                    let rel = self.implied(r.m, p);
+                    let rel = self.implied(r.m, p, intro);
                     self.add_relation(r.m, rel);
                     // "four desks with chairs": one set per parent.
                     let parent_plural = is_plural_count(self.mentions[p.m].count);
@@ -633,7 +680,7 @@ impl<'a> Interp<'a> {
             }
             Ctx::Each(parents) => {
                 for p in &parents {
-                    let rel = self.implied(r.m, p);
+                    let rel = self.implied(r.m, p, Intro::With);
                     self.add_relation(r.m, rel);
                     self.mentions[r.m].per = Some(Per::Each { parent: p.m });
                 }
@@ -680,13 +727,14 @@ impl<'a> Interp<'a> {
 
     /// The relation a holder implies for its contents: inside a container, on a surface that
     /// holds things, otherwise just "with".
-    fn implied(&self, child: usize, parent: &Ref) -> Relation {
+    fn implied(&self, child: usize, parent: &Ref, intro: Intro) -> Relation {
         let cm = &self.mentions[child];
         let pm = &self.mentions[parent.m];
         let small = cm.support == Support::Surface || !cm.known;
         let pe = self.lex.lookup(&pm.category);
         let thin = pe.is_some_and(|e| e.thin);
-        let kind = if small && pm.container && !pe.is_some_and(|e| e.holds && !e.container) {
+        let contains = intro == Intro::Verb(true);
+        let kind = if small && (pm.container || contains) {
             RelationKind::In
         } else if small && (pe.is_some_and(|e| e.holds) || thin || pm.support == Support::Wall) {
             RelationKind::On
@@ -771,6 +819,16 @@ impl<'a> Interp<'a> {
                 instance,
                 part: None,
             };
+        }
+        // "next to the stove, and a stove": the forward reference and the object are one.
+        if !definite
+            && !np.plural
+            && let Some(m) = self.recent(|m| m.category == *canonical && m.definite && m.count == Count::Exactly(1), &[])
+        {
+            self.mentions[m].definite = false;
+            let a = np.attrs.clone();
+            self.mentions[m].attributes.merge(&a);
+            return Ref::new(m);
         }
         if np.det.as_deref() == Some("another")
             && let Some(m) = self.recent(|m| m.category == *canonical, &[])
@@ -892,12 +950,14 @@ impl<'a> Interp<'a> {
                 .into_iter()
                 .map(|a| {
                     let m = &self.mentions[a.m];
-                    if m.support == Support::Surface
-                        && let Some(par) = m.relations.iter().find(|r| r.implied && r.is_support()).and_then(|r| r.target.mention())
-                    {
-                        Ref::new(par)
-                    } else {
-                        a
+                    let implied_parent = m
+                        .relations
+                        .iter()
+                        .find(|r| r.implied && (r.is_support() || r.kind == RelationKind::With))
+                        .and_then(|r| r.target.mention());
+                    match implied_parent {
+                        Some(par) if m.support == Support::Surface || m.relations.iter().all(|r| r.implied) => Ref::new(par),
+                        _ => a,
                     }
                 })
                 .collect();
@@ -993,7 +1053,8 @@ impl<'a> Interp<'a> {
 
     // ---- verbs --------------------------------------------------------------------------
 
-    fn verb(&mut self, c: &mut Clause, class: &str, _word: &str, chunks: &[Chunk], k: usize) {
+    fn verb(&mut self, c: &mut Clause, class: &str, word: &str, chunks: &[Chunk], k: usize) {
+        let contains = word.starts_with("contain");
         let finite = c.verb.is_none() && !c.relative && (!c.subject.is_empty() || c.subject_is_room || c.zone || c.fronted.is_some());
         if finite {
             c.verb = Some(class.to_string());
@@ -1031,10 +1092,11 @@ impl<'a> Interp<'a> {
                 } else if subject_is_room || subject.is_empty() || (finite && c.zone) {
                     c.ctx = Ctx::Room;
                 } else if finite {
-                    c.ctx = Ctx::Holder(subject, false);
+                    c.ctx = Ctx::Holder(subject, Intro::Verb(contains));
                     c.rel_scope = c.rel_scope || c.pronoun_subject;
-                } else {
-                    self.push_ctx(c, Ctx::Holder(subject, true));
+                } else if !matches!(chunks.get(k + 1).map(|x| &x.item), Some(Item::With)) {
+                    // "filled with ..." leaves the contents to the "with".
+                    self.push_ctx(c, Ctx::Holder(subject, Intro::Verb(contains)));
                 }
             }
             "stack" | "pile" => {
@@ -1066,8 +1128,14 @@ impl<'a> Interp<'a> {
     // ---- with, each, settings, totals ---------------------------------------------------
 
     fn with(&mut self, c: &mut Clause) {
-        // "without a rug, with a bed": the negation ends.
-        c.negate = false;
+        // "without a rug or lamp, with a bed": the negation ends and the "with" is the
+        // room's.
+        if std::mem::replace(&mut c.negate, false) {
+            c.ctx = Ctx::Room;
+            c.stack.clear();
+            c.focus.clear();
+            return;
+        }
         if matches!(c.ctx, Ctx::Setting(_)) {
             return;
         }
@@ -1086,7 +1154,7 @@ impl<'a> Interp<'a> {
         let ctx = if parent.len() == 1 && self.mentions[parent[0].m].generic {
             Ctx::Members(parent[0].m)
         } else {
-            Ctx::Holder(parent, true)
+            Ctx::Holder(parent, Intro::With)
         };
         self.push_ctx(c, ctx);
         c.after_sep = false;

@@ -268,9 +268,10 @@ fn finish(
     // the floor of the room.
     for m in &mut out {
         let explicit = |k: RelationKind, t: Target| m.relations.iter().any(|r| r.kind == k && r.target == t && !r.implied);
+        let mounted = m.attributes.adjectives.iter().any(|a| a == "wall-mounted" || a == "mounted");
         if m.relations.iter().any(|r| r.kind == RelationKind::Hanging) {
             m.support = Support::Ceiling;
-        } else if explicit(RelationKind::On, Target::Wall) {
+        } else if explicit(RelationKind::On, Target::Wall) || mounted {
             m.support = Support::Wall;
         } else if m.relations.iter().any(|r| r.is_support() && r.kind != RelationKind::With) && m.support == Support::Floor {
             let parent_small = true;

@@ -185,7 +185,11 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Str
     }
     let head_is_room = head_np.as_ref().is_some_and(|(np, _)| matches!(np.head, Head::Room { .. }));
     let listed_count: u32 = listed.iter().map(|(np, _)| np.number.unwrap_or(1).max(1)).sum();
-    let is_house = listed_count >= 2 || (listed_count == 1 && head_is_room);
+    // "A pharmacy with a waiting area": one room with a zone; "a bedroom with an en-suite
+    // bathroom": two rooms.
+    let zone = |np: &Np| matches!(&np.head, Head::Room { words, .. } if ["area", "corner", "nook", "zone", "space"].iter().any(|z| words.ends_with(z)));
+    let single_zone = listed.len() == 1 && listed.iter().all(|(np, _)| zone(np));
+    let is_house = listed_count >= 2 || (listed_count == 1 && head_is_room && !single_zone);
     if !is_house {
         // One room: the first room phrase of the sentence (the head, usually).
         let room_np = first.iter().find_map(|c| match &c.item {
