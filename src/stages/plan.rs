@@ -990,7 +990,40 @@ impl Builder<'_> {
         }
     }
 
+    /// Arrangements whose target never made it into the plan fall back: a seat goes to a
+    /// table-like piece that is there, anything else to a wall (or anywhere, off the floor).
+    fn repair_targets(&mut self) {
+        let planned: Vec<String> = self
+            .plan
+            .furniture
+            .iter()
+            .chain(&self.plan.wall)
+            .chain(&self.plan.ceiling)
+            .map(|w| w.noun.clone())
+            .collect();
+        let table = self.plan.furniture.iter().find(|w| is_table_like(self.lex, &w.noun)).map(|w| w.noun.clone());
+        let lex = self.lex;
+        let fix = |w: &mut Want, floor: bool| {
+            let Some(t) = w.arrangement.target() else { return };
+            if planned.iter().any(|p| p == t) || (t == w.noun && matches!(w.arrangement, Arrangement::Facing { .. })) {
+                return;
+            }
+            w.arrangement = match (&table, floor && is_seat(lex, &w.noun)) {
+                (Some(t), true) => Arrangement::Around { parent: t.clone() },
+                _ if floor => Arrangement::AgainstWall,
+                _ => Arrangement::Free,
+            };
+        };
+        for w in &mut self.plan.furniture {
+            fix(w, true);
+        }
+        for w in self.plan.wall.iter_mut().chain(self.plan.ceiling.iter_mut()) {
+            fix(w, false);
+        }
+    }
+
     fn finish(mut self) -> RoomPlan {
+        self.repair_targets();
         // Furniture order: anchors first, then what refers to them.
         let targets: BTreeMap<String, Option<String>> = self
             .plan
