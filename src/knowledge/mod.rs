@@ -66,7 +66,8 @@ impl TryFrom<String> for Place {
             Some((k, _)) => return Err(format!("place rule {k:?} needs a noun after ':'")),
             None => (s.trim(), None),
         };
-        let need = |arg: Option<String>| arg.ok_or_else(|| format!("place rule {kind:?} needs ':<noun>'"));
+        let need =
+            |arg: Option<String>| arg.ok_or_else(|| format!("place rule {kind:?} needs ':<noun>'"));
         Ok(match kind {
             "against_wall" => Place::AgainstWall,
             "corner" => Place::Corner,
@@ -276,17 +277,30 @@ pub struct Knowledge {
 }
 
 const ROOM_FILES: [(&str, &str); 3] = [
-    ("knowledge/rooms_home.json", include_str!("../data/knowledge/rooms_home.json")),
-    ("knowledge/rooms_work.json", include_str!("../data/knowledge/rooms_work.json")),
-    ("knowledge/rooms_public.json", include_str!("../data/knowledge/rooms_public.json")),
+    (
+        "knowledge/rooms_home.json",
+        include_str!("../data/knowledge/rooms_home.json"),
+    ),
+    (
+        "knowledge/rooms_work.json",
+        include_str!("../data/knowledge/rooms_work.json"),
+    ),
+    (
+        "knowledge/rooms_public.json",
+        include_str!("../data/knowledge/rooms_public.json"),
+    ),
 ];
 
 impl Knowledge {
     /// Builds the knowledge base from room files (name, JSON) and the object file.
-    pub fn parse(room_files: &[(&'static str, &str)], objects: &str) -> Result<Knowledge, KnowledgeError> {
+    pub fn parse(
+        room_files: &[(&'static str, &str)],
+        objects: &str,
+    ) -> Result<Knowledge, KnowledgeError> {
         let mut rooms: BTreeMap<String, RoomType> = BTreeMap::new();
         for (file, text) in room_files {
-            let f: RoomFile = serde_json::from_str(text).map_err(|source| KnowledgeError::Parse { file, source })?;
+            let f: RoomFile = serde_json::from_str(text)
+                .map_err(|source| KnowledgeError::Parse { file, source })?;
             for (k, v) in f.room_types {
                 if rooms.insert(k.clone(), v).is_some() {
                     return Err(KnowledgeError::DuplicateType(k));
@@ -299,10 +313,13 @@ impl Knowledge {
             let Some(parent) = rooms.get(k).and_then(|r| r.extends.clone()) else {
                 continue;
             };
-            let p = rooms.get(&parent).cloned().ok_or_else(|| KnowledgeError::UnknownParent {
-                child: k.clone(),
-                parent: parent.clone(),
-            })?;
+            let p = rooms
+                .get(&parent)
+                .cloned()
+                .ok_or_else(|| KnowledgeError::UnknownParent {
+                    child: k.clone(),
+                    parent: parent.clone(),
+                })?;
             if let Some(r) = rooms.get_mut(k) {
                 if r.furniture.is_empty() {
                     r.furniture = p.furniture;
@@ -333,10 +350,11 @@ impl Knowledge {
                 words.insert(w.clone(), k.clone());
             }
         }
-        let o: ObjectFile = serde_json::from_str(objects).map_err(|source| KnowledgeError::Parse {
-            file: "knowledge/objects.json",
-            source,
-        })?;
+        let o: ObjectFile =
+            serde_json::from_str(objects).map_err(|source| KnowledgeError::Parse {
+                file: "knowledge/objects.json",
+                source,
+            })?;
         Ok(Knowledge {
             rooms,
             words,
@@ -419,7 +437,8 @@ impl Knowledge {
 pub fn knowledge() -> &'static Knowledge {
     static KB: OnceLock<Knowledge> = OnceLock::new();
     KB.get_or_init(|| {
-        Knowledge::parse(&ROOM_FILES, include_str!("../data/knowledge/objects.json")).unwrap_or_default()
+        Knowledge::parse(&ROOM_FILES, include_str!("../data/knowledge/objects.json"))
+            .unwrap_or_default()
     })
 }
 
@@ -441,7 +460,13 @@ mod tests {
 
     #[test]
     fn place_rules_round_trip() {
-        for s in ["against_wall", "around:dining table", "above:bed", "across_from:entrance", "grid"] {
+        for s in [
+            "against_wall",
+            "around:dining table",
+            "above:bed",
+            "across_from:entrance",
+            "grid",
+        ] {
             let p = Place::try_from(s.to_string()).unwrap();
             assert_eq!(p.to_string(), s);
         }

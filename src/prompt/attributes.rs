@@ -141,7 +141,11 @@ pub(crate) struct Modifier {
 }
 
 fn raw_join(tokens: &[Token]) -> String {
-    tokens.iter().map(|t| t.raw.as_str()).collect::<Vec<_>>().join(" ")
+    tokens
+        .iter()
+        .map(|t| t.raw.as_str())
+        .collect::<Vec<_>>()
+        .join(" ")
 }
 
 /// A style phrase ending in a style suffix: "Star Wars themed", "Art Deco style",
@@ -155,7 +159,10 @@ fn suffixed_style(lex: &Lexicon, tokens: &[Token], at: usize) -> Option<Modifier
         if !suffix.is_word() || !lex.is_style_suffix(&suffix.text) {
             continue;
         }
-        if run.iter().any(|t| !t.is_word() || lex.is_function_word(&t.text)) {
+        if run
+            .iter()
+            .any(|t| !t.is_word() || lex.is_function_word(&t.text))
+        {
             continue;
         }
         // "large Pop Art style": the size word is not part of the style.
@@ -171,7 +178,10 @@ fn suffixed_style(lex: &Lexicon, tokens: &[Token], at: usize) -> Option<Modifier
             continue;
         }
         let next = tokens.get(at + n + 1).map(|t| t.text.as_str());
-        if matches!(next, Some("by" | "like" | "after" | "as" | "on" | "in" | "with" | "to")) {
+        if matches!(
+            next,
+            Some("by" | "like" | "after" | "as" | "on" | "in" | "with" | "to")
+        ) {
             continue;
         }
         let style = raw_join(run);
@@ -218,7 +228,10 @@ pub(crate) fn modifier_at(
         let noun_len = lex.noun_at(tokens, at).map_or(0, |(l, ..)| l);
         if noun_len <= n {
             let mut len = n;
-            if tokens.get(at + n).is_some_and(|s| lex.is_style_suffix(&s.text)) {
+            if tokens
+                .get(at + n)
+                .is_some_and(|s| lex.is_style_suffix(&s.text))
+            {
                 len += 1;
             }
             return Some(Modifier {
@@ -235,7 +248,10 @@ pub(crate) fn modifier_at(
         return None;
     }
     if let Some((n, color, _)) = lex.color_at(tokens, at) {
-        let material = (n == 1).then(|| lex.material(w)).flatten().map(str::to_string);
+        let material = (n == 1)
+            .then(|| lex.material(w))
+            .flatten()
+            .map(str::to_string);
         return Some(Modifier {
             len: n,
             kind: ModKind::Color { color, material },
@@ -255,13 +271,19 @@ pub(crate) fn modifier_at(
             start: 0,
             end: 0,
             kind: if num.chars().all(|c| c.is_ascii_digit()) {
-                num.parse().map_or(super::tokens::TokenKind::Word, super::tokens::TokenKind::Number)
+                num.parse().map_or(
+                    super::tokens::TokenKind::Word,
+                    super::tokens::TokenKind::Number,
+                )
             } else {
                 super::tokens::TokenKind::Word
             },
         });
         if let Some(n) = n {
-            let kind = if matches!(unit, "level" | "tier" | "shelf" | "shelved" | "story" | "storey" | "layer") {
+            let kind = if matches!(
+                unit,
+                "level" | "tier" | "shelf" | "shelved" | "story" | "storey" | "layer"
+            ) {
                 ModKind::Levels(n)
             } else {
                 ModKind::Adjective(w.to_string())
@@ -272,20 +294,29 @@ pub(crate) fn modifier_at(
     if lex.is_adjective(w) || lex.density(w).is_some() || lex.density_room_only(w).is_some() {
         return Some(single(t, ModKind::Adjective(w.to_string())));
     }
-    let next_wordish = tokens.get(at + 1).is_some_and(|u| u.is_word() && !lex.is_function_word(&u.text));
-    if w.contains('-') || (w.len() > 4 && w.ends_with("ed")) || (w.len() > 5 && w.ends_with("ing") && next_wordish) {
+    let next_wordish = tokens
+        .get(at + 1)
+        .is_some_and(|u| u.is_word() && !lex.is_function_word(&u.text));
+    if w.contains('-')
+        || (w.len() > 4 && w.ends_with("ed"))
+        || (w.len() > 5 && w.ends_with("ing") && next_wordish)
+    {
         return Some(single(t, ModKind::Adjective(w.to_string())));
     }
     // A proper name inside a sentence ("a Jurassic Park poster"): a theme.
     if t.capitalized() && at > sentence_start && !lex.is_non_object(w) {
         let mut n = 1;
-        while tokens
-            .get(at + n)
-            .is_some_and(|u| u.is_word() && u.capitalized() && !lex.is_function_word(&u.text) && lex.noun_at(tokens, at + n).is_none())
-        {
+        while tokens.get(at + n).is_some_and(|u| {
+            u.is_word()
+                && u.capitalized()
+                && !lex.is_function_word(&u.text)
+                && lex.noun_at(tokens, at + n).is_none()
+        }) {
             n += 1;
         }
-        let followed = tokens.get(at + n).is_some_and(|u| u.is_word() && !lex.is_function_word(&u.text));
+        let followed = tokens
+            .get(at + n)
+            .is_some_and(|u| u.is_word() && !lex.is_function_word(&u.text));
         if followed {
             return Some(Modifier {
                 len: n,
@@ -333,21 +364,40 @@ mod tests {
             mods("an Art Deco style floor lamp", 1),
             [ModKind::Style("Art Deco".into())]
         );
-        assert_eq!(mods("a Picasso-style cubist painting", 1)[0], ModKind::Style("Picasso".into()));
+        assert_eq!(
+            mods("a Picasso-style cubist painting", 1)[0],
+            ModKind::Style("Picasso".into())
+        );
         assert_eq!(
             mods("a large red wooden bowl", 1),
             [
                 ModKind::Size("large".into()),
-                ModKind::Color { color: "red".into(), material: None },
+                ModKind::Color {
+                    color: "red".into(),
+                    material: None
+                },
                 ModKind::Material("wood".into())
             ]
         );
         assert_eq!(mods("a single three-level shelf", 2), [ModKind::Levels(3)]);
-        assert_eq!(mods("a Jurassic Park poster", 1), [ModKind::Style("Jurassic Park".into())]);
-        assert_eq!(mods("a steampunk desk", 1), [ModKind::Style("steampunk".into())]);
+        assert_eq!(
+            mods("a Jurassic Park poster", 1),
+            [ModKind::Style("Jurassic Park".into())]
+        );
+        assert_eq!(
+            mods("a steampunk desk", 1),
+            [ModKind::Style("steampunk".into())]
+        );
         // "Frozen" counts as a theme only with a capital.
-        assert_eq!(mods("a Frozen poster", 1), [ModKind::Style("Frozen".into())]);
-        assert!(mods("a frozen pizza", 1).iter().all(|m| !matches!(m, ModKind::Style(_))));
+        assert_eq!(
+            mods("a Frozen poster", 1),
+            [ModKind::Style("Frozen".into())]
+        );
+        assert!(
+            mods("a frozen pizza", 1)
+                .iter()
+                .all(|m| !matches!(m, ModKind::Style(_)))
+        );
     }
 
     #[test]

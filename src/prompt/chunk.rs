@@ -108,7 +108,10 @@ impl Np {
 
     /// True for "the", "its", "this", "these", "each".
     pub fn is_definite(&self) -> bool {
-        matches!(self.det.as_deref(), Some("definite" | "possessive" | "each"))
+        matches!(
+            self.det.as_deref(),
+            Some("definite" | "possessive" | "each")
+        )
     }
 }
 
@@ -157,11 +160,19 @@ pub(crate) struct Chunk {
 }
 
 fn word<'a>(tokens: &'a [Token], i: usize) -> Option<&'a str> {
-    tokens.get(i).filter(|t| t.is_word()).map(|t| t.text.as_str())
+    tokens
+        .get(i)
+        .filter(|t| t.is_word())
+        .map(|t| t.text.as_str())
 }
 
 /// Chunks the tokens of one sentence.
-pub(crate) fn chunk_sentence(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], range: Range<usize>) -> Vec<Chunk> {
+pub(crate) fn chunk_sentence(
+    lex: &Lexicon,
+    kb: &Knowledge,
+    tokens: &[Token],
+    range: Range<usize>,
+) -> Vec<Chunk> {
     let mut out: Vec<Chunk> = Vec::new();
     let sentence_start = range.start;
     let end = range.end;
@@ -194,7 +205,12 @@ pub(crate) fn chunk_sentence(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], ra
         let w = t.text.as_str();
         let next = word(tokens, i + 1);
         let in_list = matches!(out.last().map(|c| &c.item), Some(Item::Comma | Item::And))
-            && out.iter().rev().skip(1).find(|c| !matches!(c.item, Item::Comma | Item::And)).is_some_and(|c| matches!(c.item, Item::Np(_)));
+            && out
+                .iter()
+                .rev()
+                .skip(1)
+                .find(|c| !matches!(c.item, Item::Comma | Item::And))
+                .is_some_and(|c| matches!(c.item, Item::Np(_)));
         // Fixed phrases first.
         if w == "in" && next == Some("total") {
             push(&mut out, Item::InTotal, 2);
@@ -254,7 +270,11 @@ pub(crate) fn chunk_sentence(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], ra
                 continue;
             }
             "it" | "them" | "they" => {
-                let p = if w == "it" { Pronoun::It } else { Pronoun::Them };
+                let p = if w == "it" {
+                    Pronoun::It
+                } else {
+                    Pronoun::Them
+                };
                 push(&mut out, Item::Np(Box::new(pronoun_np(p))), 1);
                 i += 1;
                 continue;
@@ -294,7 +314,9 @@ pub(crate) fn chunk_sentence(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], ra
                 continue;
             }
             if let Some(class) = lex.verb(w)
-                && !(noun_len == 1 && !matches!(out.last().map(|c| &c.item), Some(Item::Np(_))) && class != "locate")
+                && !(noun_len == 1
+                    && !matches!(out.last().map(|c| &c.item), Some(Item::Np(_)))
+                    && class != "locate")
             {
                 push(&mut out, Item::Verb(class.to_string(), w.to_string()), 1);
                 i += 1;
@@ -355,7 +377,9 @@ fn pronoun_np(p: Pronoun) -> Np {
 /// "about", "over", "around" are quantifiers only before a number.
 fn quantifier_fits(lex: &Lexicon, tokens: &[Token], i: usize) -> bool {
     match lex.quantifier_at(tokens, i) {
-        Some((n, "about_number" | "more_than_number")) => tokens.get(i + n).and_then(|t| lex.number(t)).is_some(),
+        Some((n, "about_number" | "more_than_number")) => {
+            tokens.get(i + n).and_then(|t| lex.number(t)).is_some()
+        }
         Some(_) => true,
         None => false,
     }
@@ -414,7 +438,11 @@ pub(crate) fn parse_np(
             if class == "other" || class == "another" {
                 np.other = true;
             }
-            np.det = Some(if class == "other" { "definite".to_string() } else { class.to_string() });
+            np.det = Some(if class == "other" {
+                "definite".to_string()
+            } else {
+                class.to_string()
+            });
             j += 1;
             if w == "the" && at(j) == Some("other") {
                 np.other = true;
@@ -451,7 +479,11 @@ pub(crate) fn parse_np(
         && lex.verb(w).is_some()
         && lex.noun_at(tokens, j).is_none()
     {
-        np.head = Head::Pronoun(if np.one_word { Pronoun::One } else { Pronoun::Other });
+        np.head = Head::Pronoun(if np.one_word {
+            Pronoun::One
+        } else {
+            Pronoun::Other
+        });
         return Some((np, j));
     }
     // Group words: "a stack of", "pairs of".
@@ -491,7 +523,10 @@ pub(crate) fn parse_np(
     // Top/bottom/other before a part noun ("the top level", "the other two levels").
     let mut which: Option<String> = None;
     if let Some(w) = at(j)
-        && matches!(w, "top" | "bottom" | "middle" | "lower" | "upper" | "remaining" | "last")
+        && matches!(
+            w,
+            "top" | "bottom" | "middle" | "lower" | "upper" | "remaining" | "last"
+        )
         && at(j + 1).is_some_and(|n| lex.part(n).is_some())
     {
         which = Some(w.to_string());
@@ -510,7 +545,8 @@ pub(crate) fn parse_np(
             _ => break,
         }
     }
-    let evidence = np.has_det() || np.ordinal.is_some() || !np.attrs.modifiers.is_empty() || np.negated;
+    let evidence =
+        np.has_det() || np.ordinal.is_some() || !np.attrs.modifiers.is_empty() || np.negated;
     let w = at(j)?;
     // Head.
     let noun = lex.noun_at(tokens, j).filter(|(n, ..)| j + n <= end);
@@ -544,7 +580,10 @@ pub(crate) fn parse_np(
             && start + n + n2 <= end
             && lex.verb(&tokens[start + n].text).is_none()
         {
-            let text: Vec<&str> = tokens[start..start + n].iter().map(|t| t.raw.as_str()).collect();
+            let text: Vec<&str> = tokens[start..start + n]
+                .iter()
+                .map(|t| t.raw.as_str())
+                .collect();
             let text = text.join(" ");
             if let Some(mat) = lex.material(&tokens[start].text)
                 && n == 1
@@ -575,9 +614,13 @@ pub(crate) fn parse_np(
             && !x.ends_with("ed")
             && !x.ends_with("ly")
             && x.chars().all(|ch| ch.is_alphabetic())
-            && at(start + n + 1).is_none_or(|y| lex.is_function_word(y) || lex.landmark(y).is_some())
+            && at(start + n + 1)
+                .is_none_or(|y| lex.is_function_word(y) || lex.landmark(y).is_some())
         {
-            let mut written: Vec<String> = tokens[start..start + n + 1].iter().map(|t| t.text.clone()).collect();
+            let mut written: Vec<String> = tokens[start..start + n + 1]
+                .iter()
+                .map(|t| t.text.clone())
+                .collect();
             let plural2 = lex.is_plural(x);
             if let Some(last) = written.last_mut() {
                 *last = lex.singular(last);
@@ -604,11 +647,17 @@ pub(crate) fn parse_np(
             np.plural = plural;
             return Some((np, start + n));
         }
-        let mut written: Vec<String> = tokens[start..start + n].iter().map(|t| t.text.clone()).collect();
+        let mut written: Vec<String> = tokens[start..start + n]
+            .iter()
+            .map(|t| t.text.clone())
+            .collect();
         if let Some(last) = written.last_mut() {
             *last = lex.singular(last);
         }
-        let canonical = lex.objects.get(entry).map_or_else(|| written.join(" "), |e| e.noun.clone());
+        let canonical = lex
+            .objects
+            .get(entry)
+            .map_or_else(|| written.join(" "), |e| e.noun.clone());
         np.plural = plural;
         np.head = Head::Object {
             entry: Some(entry),
@@ -643,7 +692,11 @@ pub(crate) fn parse_np(
         && part != "level_if_parent"
         && part != "top"
     {
-        let kind = if part == "setting" { "setting" } else { "level" };
+        let kind = if part == "setting" {
+            "setting"
+        } else {
+            "level"
+        };
         np.plural = lex.is_plural(w);
         np.head = Head::Part {
             kind: kind.to_string(),
@@ -691,8 +744,11 @@ pub(crate) fn parse_np(
                 && let Some((n2, e2, p2)) = lex.noun_at(tokens, k)
                 && k + n2 <= end
             {
-                np.attrs.modifiers.extend(tokens[j..k].iter().map(|t| t.raw.clone()));
-                let mut written: Vec<String> = tokens[k..k + n2].iter().map(|t| t.text.clone()).collect();
+                np.attrs
+                    .modifiers
+                    .extend(tokens[j..k].iter().map(|t| t.raw.clone()));
+                let mut written: Vec<String> =
+                    tokens[k..k + n2].iter().map(|t| t.text.clone()).collect();
                 if let Some(last) = written.last_mut() {
                     *last = lex.singular(last);
                 }
@@ -700,7 +756,10 @@ pub(crate) fn parse_np(
                 np.head = Head::Object {
                     entry: Some(e2),
                     noun: written.join(" "),
-                    canonical: lex.objects.get(e2).map_or_else(|| written.join(" "), |e| e.noun.clone()),
+                    canonical: lex
+                        .objects
+                        .get(e2)
+                        .map_or_else(|| written.join(" "), |e| e.noun.clone()),
                     head_entry: None,
                 };
                 return Some((np, k + n2));
@@ -708,8 +767,11 @@ pub(crate) fn parse_np(
             if k > j
                 && let Some((n2, key)) = kb.room_type_at(tokens, k)
             {
-                np.attrs.modifiers.extend(tokens[j..k].iter().map(|t| t.raw.clone()));
-                let mut ws: Vec<String> = tokens[k..k + n2].iter().map(|t| t.text.clone()).collect();
+                np.attrs
+                    .modifiers
+                    .extend(tokens[j..k].iter().map(|t| t.raw.clone()));
+                let mut ws: Vec<String> =
+                    tokens[k..k + n2].iter().map(|t| t.text.clone()).collect();
                 if let Some(last) = ws.last_mut() {
                     *last = lex.singular(last);
                 }
@@ -722,9 +784,9 @@ pub(crate) fn parse_np(
             words.push(x.to_string());
             k += 1;
         }
-        let last_ok = words
-            .last()
-            .is_some_and(|l| !l.ends_with("ly") && !l.ends_with("ing") && l.chars().any(char::is_alphabetic));
+        let last_ok = words.last().is_some_and(|l| {
+            !l.ends_with("ly") && !l.ends_with("ing") && l.chars().any(char::is_alphabetic)
+        });
         if last_ok {
             let last = words.last().cloned().unwrap_or_default();
             np.plural = lex.is_plural(&last);
@@ -790,7 +852,10 @@ mod tests {
         let n = nps("A kitchen with four chairs, plates and mugs.");
         assert_eq!(canon(&n[0]), "kitchen");
         assert_eq!((canon(&n[1]), n[1].number), ("chair", Some(4)));
-        assert_eq!((canon(&n[2]), n[2].number, n[2].plural), ("plate", None, true));
+        assert_eq!(
+            (canon(&n[2]), n[2].number, n[2].plural),
+            ("plate", None, true)
+        );
         assert_eq!((canon(&n[3]), n[3].number), ("mug", None));
     }
 
@@ -798,9 +863,18 @@ mod tests {
     fn groups_pairs_and_quantifiers() {
         let n = nps("exactly 5 pairs of shoes and a stack of 8 books and at least 10 cans");
         assert_eq!(n[0].group, Some(GroupKind::Pair));
-        assert_eq!((n[0].number, n[0].quant.as_deref()), (Some(5), Some("exactly")));
-        assert_eq!((canon(&n[1]), n[1].number, n[1].group), ("book", Some(8), Some(GroupKind::Stack)));
-        assert_eq!((n[2].number, n[2].quant.as_deref()), (Some(10), Some("at_least")));
+        assert_eq!(
+            (n[0].number, n[0].quant.as_deref()),
+            (Some(5), Some("exactly"))
+        );
+        assert_eq!(
+            (canon(&n[1]), n[1].number, n[1].group),
+            ("book", Some(8), Some(GroupKind::Stack))
+        );
+        assert_eq!(
+            (n[2].number, n[2].quant.as_deref()),
+            (Some(10), Some("at_least"))
+        );
     }
 
     #[test]
@@ -818,7 +892,13 @@ mod tests {
         assert!(c.contains(&Item::Prep("around".into())));
         assert!(matches!(c.last(), Some(Item::Np(np)) if np.head == Head::Pronoun(Pronoun::It)));
         let c = chunks("where one displays pet food bags and the other displays pet toys");
-        assert!(c.iter().any(|i| matches!(i, Item::Np(np) if np.head == Head::Pronoun(Pronoun::One))));
-        assert!(c.iter().any(|i| matches!(i, Item::Np(np) if np.head == Head::Pronoun(Pronoun::Other))));
+        assert!(
+            c.iter()
+                .any(|i| matches!(i, Item::Np(np) if np.head == Head::Pronoun(Pronoun::One)))
+        );
+        assert!(
+            c.iter()
+                .any(|i| matches!(i, Item::Np(np) if np.head == Head::Pronoun(Pronoun::Other)))
+        );
     }
 }

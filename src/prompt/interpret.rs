@@ -157,14 +157,21 @@ pub(crate) struct Interp<'a> {
 
 fn is_room_placement(kind: RelationKind, target: Target) -> bool {
     match target {
-        Target::Wall | Target::Corner | Target::Window | Target::Entrance | Target::Room => !matches!(kind, RelationKind::On),
+        Target::Wall | Target::Corner | Target::Window | Target::Entrance | Target::Room => {
+            !matches!(kind, RelationKind::On)
+        }
         _ => false,
     }
 }
 
 impl<'a> Interp<'a> {
     /// A new interpreter over `tokens` with the rooms of the structure.
-    pub fn new(lex: &'a Lexicon, tokens: &'a [Token], rooms: Vec<RoomReading>, scope: Scope) -> Interp<'a> {
+    pub fn new(
+        lex: &'a Lexicon,
+        tokens: &'a [Token],
+        rooms: Vec<RoomReading>,
+        scope: Scope,
+    ) -> Interp<'a> {
         let n = rooms.len().max(1);
         Interp {
             lex,
@@ -210,7 +217,11 @@ impl<'a> Interp<'a> {
             c.skip_next = false;
             match &chunk.item {
                 Item::Np(np) => self.np(&mut c, np, chunk, chunks, k),
-                Item::Prep(class) => self.prep(&mut c, class, chunks.get(k.wrapping_sub(1)).map(|x| &x.item)),
+                Item::Prep(class) => self.prep(
+                    &mut c,
+                    class,
+                    chunks.get(k.wrapping_sub(1)).map(|x| &x.item),
+                ),
                 Item::Verb(class, word) => self.verb(&mut c, class, word, chunks, k),
                 Item::With => {
                     if let Some(skip) = self.features_after_with(&mut c, chunks, k) {
@@ -256,7 +267,11 @@ impl<'a> Interp<'a> {
                 }
                 Item::Including => {
                     if let Some(f) = c.last_np.first().cloned() {
-                        let ctx = if self.mentions[f.m].generic { Ctx::Members(f.m) } else { Ctx::Holder(vec![f], Intro::With) };
+                        let ctx = if self.mentions[f.m].generic {
+                            Ctx::Members(f.m)
+                        } else {
+                            Ctx::Holder(vec![f], Intro::With)
+                        };
                         self.push_ctx(&mut c, ctx);
                     }
                 }
@@ -264,7 +279,11 @@ impl<'a> Interp<'a> {
                     // "a vase of flowers", "shelves of stuffed animals": contents, for the
                     // next phrase only.
                     if let Some(f) = c.focus.first().cloned()
-                        && (self.mentions[f.m].container || self.lex.lookup(&self.mentions[f.m].category).is_some_and(|e| e.holds))
+                        && (self.mentions[f.m].container
+                            || self
+                                .lex
+                                .lookup(&self.mentions[f.m].category)
+                                .is_some_and(|e| e.holds))
                     {
                         self.push_ctx(&mut c, Ctx::Holder(vec![f], Intro::Of));
                         c.of_once = true;
@@ -301,7 +320,10 @@ impl<'a> Interp<'a> {
             match &c.item {
                 // A participle ("a bookshelf filled with ...") does not start a clause.
                 Item::Verb(class, word) => {
-                    return class != "styled" && class != "inspired" && !word.ends_with("ed") && !word.ends_with("ing");
+                    return class != "styled"
+                        && class != "inspired"
+                        && !word.ends_with("ed")
+                        && !word.ends_with("ing");
                 }
                 Item::Np(_) | Item::With | Item::Prep(_) | Item::And | Item::Of => j += 1,
                 _ => return false,
@@ -321,7 +343,9 @@ impl<'a> Interp<'a> {
         match &np.head {
             Head::Room { .. } => self.room_np(c, np, next_is_verb),
             Head::Landmark(class) => {
-                let Some(target) = landmark_target(class) else { return };
+                let Some(target) = landmark_target(class) else {
+                    return;
+                };
                 if let Some(p) = c.pending.take() {
                     self.relate_pending(c, &p, target, Some(class), None);
                 } else if let Ctx::Cover(subj) = c.ctx.clone() {
@@ -422,16 +446,29 @@ impl<'a> Interp<'a> {
                 }
                 return;
             }
-            Pronoun::It => self.recent(|m| !m.negated && !is_plural_count(m.count), &exclude).map(Ref::new),
-            Pronoun::Them => self.recent(|m| !m.negated && is_plural_count(m.count), &exclude).map(Ref::new),
-            Pronoun::One | Pronoun::Other => (if p == Pronoun::Other { self.last_one } else { None })
-                .or_else(|| c.last_np.first().map(|r| r.m).filter(|&m| is_plural_count(self.mentions[m].count)))
-                .or_else(|| self.recent(|m| matches!(m.count, Count::Exactly(n) if n >= 2), &exclude))
-                .map(|m| Ref {
-                    m,
-                    instance: Some(if p == Pronoun::One { 0 } else { 1 }),
-                    part: None,
-                }),
+            Pronoun::It => self
+                .recent(|m| !m.negated && !is_plural_count(m.count), &exclude)
+                .map(Ref::new),
+            Pronoun::Them => self
+                .recent(|m| !m.negated && is_plural_count(m.count), &exclude)
+                .map(Ref::new),
+            Pronoun::One | Pronoun::Other => (if p == Pronoun::Other {
+                self.last_one
+            } else {
+                None
+            })
+            .or_else(|| {
+                c.last_np
+                    .first()
+                    .map(|r| r.m)
+                    .filter(|&m| is_plural_count(self.mentions[m].count))
+            })
+            .or_else(|| self.recent(|m| matches!(m.count, Count::Exactly(n) if n >= 2), &exclude))
+            .map(|m| Ref {
+                m,
+                instance: Some(if p == Pronoun::One { 0 } else { 1 }),
+                part: None,
+            }),
         };
         let Some(r) = target else { return };
         if let Some(pe) = c.pending.take() {
@@ -453,16 +490,29 @@ impl<'a> Interp<'a> {
 
     /// Most recent live mention of the current room passing `f`, skipping `exclude`.
     fn recent(&self, f: impl Fn(&Mention) -> bool, exclude: &[usize]) -> Option<usize> {
-        (0..self.mentions.len())
-            .rev()
-            .find(|&i| self.alive(i) && self.mentions[i].room == self.room && !exclude.contains(&i) && f(&self.mentions[i]))
+        (0..self.mentions.len()).rev().find(|&i| {
+            self.alive(i)
+                && self.mentions[i].room == self.room
+                && !exclude.contains(&i)
+                && f(&self.mentions[i])
+        })
     }
 
     /// The shelf-like mention a "level" belongs to.
     fn level_parent(&self) -> Option<usize> {
         self.recent(|m| m.attributes.levels.is_some(), &[])
-            .or_else(|| self.recent(|m| m.category.contains("shelf") || m.category.contains("rack"), &[]))
-            .or_else(|| self.recent(|m| self.lex.lookup(&m.category).is_some_and(|e| e.holds), &[]))
+            .or_else(|| {
+                self.recent(
+                    |m| m.category.contains("shelf") || m.category.contains("rack"),
+                    &[],
+                )
+            })
+            .or_else(|| {
+                self.recent(
+                    |m| self.lex.lookup(&m.category).is_some_and(|e| e.holds),
+                    &[],
+                )
+            })
     }
 
     fn add_styles(&mut self, targets: &[Ref], np: &Np) {
@@ -493,7 +543,11 @@ impl<'a> Interp<'a> {
     }
 
     fn object_np(&mut self, c: &mut Clause, np: &Np, chunk: &Chunk, next_is_verb: bool) {
-        if c.after_sep && c.sep_was_comma && np.has_det() && matches!(c.ctx, Ctx::StyleOf(_) | Ctx::Cover(_)) {
+        if c.after_sep
+            && c.sep_was_comma
+            && np.has_det()
+            && matches!(c.ctx, Ctx::StyleOf(_) | Ctx::Cover(_))
+        {
             if c.stack.is_empty() {
                 c.ctx = Ctx::Room;
             } else {
@@ -517,11 +571,20 @@ impl<'a> Interp<'a> {
             return;
         }
         let r = self.resolve_object(c, np, chunk);
-        let is_new = r.m + 1 == self.mentions.len() && self.mentions[r.m].span == [self.tokens[chunk.range.start].start, self.tokens[chunk.range.end - 1].end];
+        let is_new = r.m + 1 == self.mentions.len()
+            && self.mentions[r.m].span
+                == [
+                    self.tokens[chunk.range.start].start,
+                    self.tokens[chunk.range.end - 1].end,
+                ];
         if let Some(p) = c.pending.take() {
             if p.class == "surrounded_by" || p.class == "flanked_by" {
                 // Inverse: the new phrase surrounds the attach set.
-                let kind = if p.class == "surrounded_by" { RelationKind::Around } else { RelationKind::Flanking };
+                let kind = if p.class == "surrounded_by" {
+                    RelationKind::Around
+                } else {
+                    RelationKind::Flanking
+                };
                 for a in &p.attach {
                     let mut rel = Relation::new(kind, Target::Mention(a.m));
                     rel.instance = a.instance;
@@ -537,12 +600,22 @@ impl<'a> Interp<'a> {
                 return;
             }
             let each_target = np.det.as_deref() == Some("each");
-            self.relate_pending_each(c, &p, Target::Mention(r.m), None, Some(r.clone()), each_target);
+            self.relate_pending_each(
+                c,
+                &p,
+                Target::Mention(r.m),
+                None,
+                Some(r.clone()),
+                each_target,
+            );
             if is_new {
                 // "4 teacups on saucers": one saucer each.
                 if self.mentions[r.m].count == Count::Several
                     && let Some(a) = p.attach.first()
-                    && matches!(self.mentions[a.m].count, Count::Exactly(_) | Count::AtLeast(_))
+                    && matches!(
+                        self.mentions[a.m].count,
+                        Count::Exactly(_) | Count::AtLeast(_)
+                    )
                     && p.class == "on"
                 {
                     self.mentions[r.m].count = self.mentions[a.m].count;
@@ -571,8 +644,12 @@ impl<'a> Interp<'a> {
         if c.after_sep && c.sep_was_comma && np.has_det() && matches!(c.ctx, Ctx::Each(_)) {
             // ", each with two chairs, a counter with ...": the counter is not per table.
             let keeps = match &np.head {
-                Head::Object { entry, canonical, .. } => {
-                    entry.and_then(|e| self.lex.objects.get(e)).is_none_or(|e| e.support == Support::Surface)
+                Head::Object {
+                    entry, canonical, ..
+                } => {
+                    entry
+                        .and_then(|e| self.lex.objects.get(e))
+                        .is_none_or(|e| e.support == Support::Surface)
                         || canonical.ends_with("chair")
                         || canonical.ends_with("stool")
                 }
@@ -586,7 +663,9 @@ impl<'a> Interp<'a> {
         if c.after_sep && matches!(c.ctx, Ctx::Holder(..)) && !c.stack.is_empty() {
             let bare = !np.has_det();
             let small = match &np.head {
-                Head::Object { entry, head_entry, .. } => entry
+                Head::Object {
+                    entry, head_entry, ..
+                } => entry
                     .or(*head_entry)
                     .and_then(|e| self.lex.objects.get(e))
                     .is_none_or(|e| e.support == Support::Surface),
@@ -597,7 +676,12 @@ impl<'a> Interp<'a> {
                 self.pop_ctx(c);
             }
         }
-        if c.verb.is_none() && matches!(c.ctx, Ctx::Room) && !c.subject_is_room && !c.room_with && (c.subject.is_empty() || c.after_sep || next_is_verb) {
+        if c.verb.is_none()
+            && matches!(c.ctx, Ctx::Room)
+            && !c.subject_is_room
+            && !c.room_with
+            && (c.subject.is_empty() || c.after_sep || next_is_verb)
+        {
             c.subject.push(r.clone());
         }
         self.apply_ctx(c, &r, np);
@@ -652,7 +736,10 @@ impl<'a> Interp<'a> {
 
     /// True when `np` names the same noun as mention `m` (same canonical or same head word).
     fn same_noun(&self, m: usize, np: &Np) -> bool {
-        let Head::Object { canonical, noun, .. } = &np.head else {
+        let Head::Object {
+            canonical, noun, ..
+        } = &np.head
+        else {
             return false;
         };
         let mm = &self.mentions[m];
@@ -673,7 +760,13 @@ impl<'a> Interp<'a> {
                     self.add_relation(r.m, rel);
                     // "four desks with chairs": one set per parent.
                     let parent_plural = is_plural_count(self.mentions[p.m].count);
-                    if from_with && p.instance.is_none() && parent_plural && !np.has_det() && np.plural && self.mentions[r.m].per.is_none() {
+                    if from_with
+                        && p.instance.is_none()
+                        && parent_plural
+                        && !np.has_det()
+                        && np.plural
+                        && self.mentions[r.m].per.is_none()
+                    {
                         self.mentions[r.m].per = Some(Per::Each { parent: p.m });
                     }
                 }
@@ -752,10 +845,17 @@ impl<'a> Interp<'a> {
 
     /// Count of a phrase (pairs multiplied, "at least" carried).
     fn count_of(&self, np: &Np, c: &Clause, noun: Option<&str>) -> Count {
-        let mut count = phrase_count(np.quant.as_deref(), np.number, np.plus, np.det.as_deref(), np.plural);
+        let mut count = phrase_count(
+            np.quant.as_deref(),
+            np.number,
+            np.plus,
+            np.det.as_deref(),
+            np.plural,
+        );
         if np.group == Some(GroupKind::Pair) {
             let pairs = np.number.unwrap_or(1);
-            let tantum = noun.is_some_and(|n| self.lex.plurale_tantum(n.rsplit(' ').next().unwrap_or(n)));
+            let tantum =
+                noun.is_some_and(|n| self.lex.plurale_tantum(n.rsplit(' ').next().unwrap_or(n)));
             let n = if tantum { pairs } else { pairs * 2 };
             count = match count {
                 Count::AtLeast(_) => Count::AtLeast(n),
@@ -789,9 +889,16 @@ impl<'a> Interp<'a> {
         let existing = |me: &Self| -> Option<usize> {
             let last = |s: &str| s.rsplit(' ').next().unwrap_or(s).to_string();
             let first = |s: &str| s.split(' ').next().unwrap_or(s).to_string();
-            let kind_of = entry.and_then(|e| me.lex.objects.get(e)).and_then(|e| e.kind_of.clone());
+            let kind_of = entry
+                .and_then(|e| me.lex.objects.get(e))
+                .and_then(|e| e.kind_of.clone());
             me.recent(|m| m.category == *canonical, &[])
-                .or_else(|| me.recent(|m| last(&m.noun) == last(noun) || last(&m.category) == last(canonical), &[]))
+                .or_else(|| {
+                    me.recent(
+                        |m| last(&m.noun) == last(noun) || last(&m.category) == last(canonical),
+                        &[],
+                    )
+                })
                 .or_else(|| {
                     me.recent(
                         |m| {
@@ -805,13 +912,21 @@ impl<'a> Interp<'a> {
                 })
                 .or_else(|| {
                     kind_of.as_ref().and_then(|k| {
-                        me.recent(|m| first(&m.category) == first(canonical) && me.lex.lookup(&m.category).and_then(|e| e.kind_of.as_deref()) == Some(k.as_str()), &[])
+                        me.recent(
+                            |m| {
+                                first(&m.category) == first(canonical)
+                                    && me
+                                        .lex
+                                        .lookup(&m.category)
+                                        .and_then(|e| e.kind_of.as_deref())
+                                        == Some(k.as_str())
+                            },
+                            &[],
+                        )
                     })
                 })
         };
-        if definite
-            && let Some(m) = existing(self)
-        {
+        if definite && let Some(m) = existing(self) {
             let a = np.attrs.clone();
             self.mentions[m].attributes.merge(&a);
             return Ref {
@@ -823,7 +938,10 @@ impl<'a> Interp<'a> {
         // "next to the stove, and a stove": the forward reference and the object are one.
         if !definite
             && !np.plural
-            && let Some(m) = self.recent(|m| m.category == *canonical && m.definite && m.count == Count::Exactly(1), &[])
+            && let Some(m) = self.recent(
+                |m| m.category == *canonical && m.definite && m.count == Count::Exactly(1),
+                &[],
+            )
         {
             self.mentions[m].definite = false;
             let a = np.attrs.clone();
@@ -854,7 +972,8 @@ impl<'a> Interp<'a> {
         }
         if np.one_word
             && np.number == Some(1)
-            && let Some(m) = self.recent(|m| m.category == *canonical && m.count.minimum() >= 2, &[])
+            && let Some(m) =
+                self.recent(|m| m.category == *canonical && m.count.minimum() >= 2, &[])
         {
             return Ref {
                 m,
@@ -864,17 +983,26 @@ impl<'a> Interp<'a> {
         }
         let e = entry.or(*head_entry).and_then(|i| self.lex.objects.get(i));
         let count = self.count_of(np, c, Some(noun));
-        let span = [self.tokens[chunk.range.start].start, self.tokens[chunk.range.end - 1].end];
+        let span = [
+            self.tokens[chunk.range.start].start,
+            self.tokens[chunk.range.end - 1].end,
+        ];
         let mention = Mention {
             category: canonical.clone(),
             noun: noun.clone(),
             count,
             negated: false,
             known: entry.is_some(),
-            head: if entry.is_none() { e.map(|e| e.noun.clone()) } else { None },
+            head: if entry.is_none() {
+                e.map(|e| e.noun.clone())
+            } else {
+                None
+            },
             support: e.map_or(Support::Floor, |e| e.support),
             container: e.is_some_and(|e| e.container),
-            generic: entry.and_then(|i| self.lex.objects.get(i)).is_some_and(|e| e.generic),
+            generic: entry
+                .and_then(|i| self.lex.objects.get(i))
+                .is_some_and(|e| e.generic),
             attributes: np.attrs.clone(),
             relations: Vec::new(),
             per: None,
@@ -918,11 +1046,26 @@ impl<'a> Interp<'a> {
         }
     }
 
-    fn relate_pending(&mut self, c: &mut Clause, p: &Pending, target: Target, landmark: Option<&str>, tref: Option<Ref>) {
+    fn relate_pending(
+        &mut self,
+        c: &mut Clause,
+        p: &Pending,
+        target: Target,
+        landmark: Option<&str>,
+        tref: Option<Ref>,
+    ) {
         self.relate_pending_each(c, p, target, landmark, tref, false);
     }
 
-    fn relate_pending_each(&mut self, c: &mut Clause, p: &Pending, target: Target, landmark: Option<&str>, tref: Option<Ref>, each_target: bool) {
+    fn relate_pending_each(
+        &mut self,
+        c: &mut Clause,
+        p: &Pending,
+        target: Target,
+        landmark: Option<&str>,
+        tref: Option<Ref>,
+        each_target: bool,
+    ) {
         let verb = c.verb.as_deref();
         let Some((kind, target)) = normalize(&p.class, landmark, verb, target) else {
             return;
@@ -956,7 +1099,12 @@ impl<'a> Interp<'a> {
                         .find(|r| r.implied && (r.is_support() || r.kind == RelationKind::With))
                         .and_then(|r| r.target.mention());
                     match implied_parent {
-                        Some(par) if m.support == Support::Surface || m.relations.iter().all(|r| r.implied) => Ref::new(par),
+                        Some(par)
+                            if m.support == Support::Surface
+                                || m.relations.iter().all(|r| r.implied) =>
+                        {
+                            Ref::new(par)
+                        }
                         _ => a,
                     }
                 })
@@ -1021,7 +1169,9 @@ impl<'a> Interp<'a> {
         if let Some(kind) = kind {
             if let Some(parent) = ctx_parent {
                 for f in c.focus.clone() {
-                    if kind == RelationKind::Flanking && self.mentions[f.m].count == Count::Exactly(1) {
+                    if kind == RelationKind::Flanking
+                        && self.mentions[f.m].count == Count::Exactly(1)
+                    {
                         self.mentions[f.m].count = Count::Exactly(2);
                     }
                     self.add_relation(f.m, Relation::new(kind, Target::Mention(parent)));
@@ -1055,7 +1205,9 @@ impl<'a> Interp<'a> {
 
     fn verb(&mut self, c: &mut Clause, class: &str, word: &str, chunks: &[Chunk], k: usize) {
         let contains = word.starts_with("contain");
-        let finite = c.verb.is_none() && !c.relative && (!c.subject.is_empty() || c.subject_is_room || c.zone || c.fronted.is_some());
+        let finite = c.verb.is_none()
+            && !c.relative
+            && (!c.subject.is_empty() || c.subject_is_room || c.zone || c.fronted.is_some());
         if finite {
             c.verb = Some(class.to_string());
             c.stack.clear();
@@ -1068,7 +1220,11 @@ impl<'a> Interp<'a> {
         } else {
             // A participle or relative clause about the last phrase: "tires stacked in the
             // corner", "shelves holding ten bottles", "the chalkboard, which hangs ...".
-            let about = if c.relative { c.last_np.clone() } else { c.focus.clone() };
+            let about = if c.relative {
+                c.last_np.clone()
+            } else {
+                c.focus.clone()
+            };
             c.relative = false;
             if !about.is_empty() {
                 c.focus = about;
@@ -1082,7 +1238,10 @@ impl<'a> Interp<'a> {
         match class {
             "possess" | "display" | "fill_with" | "decorate_with" => {
                 if matches!(class, "fill_with" | "decorate_with")
-                    && let Some(Chunk { item: Item::Prep(p), .. }) = chunks.get(k + 1)
+                    && let Some(Chunk {
+                        item: Item::Prep(p),
+                        ..
+                    }) = chunks.get(k + 1)
                     && p == "in"
                 {
                     c.skip_next = true;
@@ -1100,7 +1259,11 @@ impl<'a> Interp<'a> {
                 }
             }
             "stack" | "pile" => {
-                let kind = if class == "stack" { GroupKind::Stack } else { GroupKind::Pile };
+                let kind = if class == "stack" {
+                    GroupKind::Stack
+                } else {
+                    GroupKind::Pile
+                };
                 let g = self.new_group(kind);
                 for s in &subject {
                     if self.mentions[s.m].group.is_none() {
@@ -1111,10 +1274,17 @@ impl<'a> Interp<'a> {
             "cover" => c.ctx = Ctx::Cover(subject),
 
             "styled" | "inspired" => {
-                let targets = if subject_is_room || subject.is_empty() { Vec::new() } else { subject };
+                let targets = if subject_is_room || subject.is_empty() {
+                    Vec::new()
+                } else {
+                    subject
+                };
                 self.push_ctx(c, Ctx::StyleOf(targets));
                 // Skip "by" / "like": the next phrase is the style.
-                if let Some(Chunk { item: Item::Prep(p), .. }) = chunks.get(k + 1)
+                if let Some(Chunk {
+                    item: Item::Prep(p),
+                    ..
+                }) = chunks.get(k + 1)
                     && (p == "by" || p == "near")
                 {
                     c.skip_next = true;
@@ -1171,20 +1341,31 @@ impl<'a> Interp<'a> {
         while let Some(ch) = chunks.get(j) {
             match &ch.item {
                 Item::Np(np) => {
-                    let det_object = matches!(np.head, Head::Object { .. }) && np.has_det() && j > k + 1;
+                    let det_object =
+                        matches!(np.head, Head::Object { .. }) && np.has_det() && j > k + 1;
                     if det_object {
                         break;
                     }
                     match &np.head {
                         Head::Object { noun, .. } => {
-                            if self.lex.is_feature_noun(noun.rsplit(' ').next().unwrap_or(noun)) || self.lex.is_feature_noun(&self.tokens[ch.range.end - 1].text) {
+                            if self
+                                .lex
+                                .is_feature_noun(noun.rsplit(' ').next().unwrap_or(noun))
+                                || self
+                                    .lex
+                                    .is_feature_noun(&self.tokens[ch.range.end - 1].text)
+                            {
                                 saw_feature = true;
                             } else {
                                 return None;
                             }
                         }
                         Head::Feature | Head::NonObject => saw_feature = true,
-                        Head::Room { .. } | Head::Landmark(_) | Head::Part { .. } | Head::Setting | Head::Pronoun(_) => return None,
+                        Head::Room { .. }
+                        | Head::Landmark(_)
+                        | Head::Part { .. }
+                        | Head::Setting
+                        | Head::Pronoun(_) => return None,
                     }
                     end_tok = Some(ch.range.end);
                 }
@@ -1222,7 +1403,10 @@ impl<'a> Interp<'a> {
 
     fn text_of(&self, r: Range<usize>) -> String {
         let toks = &self.tokens[r];
-        toks.iter().map(|t| t.raw.as_str()).collect::<Vec<_>>().join(" ")
+        toks.iter()
+            .map(|t| t.raw.as_str())
+            .collect::<Vec<_>>()
+            .join(" ")
     }
 
     fn each(&mut self, c: &mut Clause, chunks: &[Chunk], k: usize) {
@@ -1265,10 +1449,17 @@ impl<'a> Interp<'a> {
     }
 
     fn set_for(&mut self, c: &mut Clause, chunks: &[Chunk], k: usize) {
-        let Some(table) = c.focus.first().map(|r| r.m).or_else(|| c.last_np.first().map(|r| r.m)) else {
+        let Some(table) = c
+            .focus
+            .first()
+            .map(|r| r.m)
+            .or_else(|| c.last_np.first().map(|r| r.m))
+        else {
             return;
         };
-        if let Some(Chunk { item: Item::Np(np), .. }) = chunks.get(k + 1)
+        if let Some(Chunk {
+            item: Item::Np(np), ..
+        }) = chunks.get(k + 1)
             && let Some(n) = np.number
         {
             self.mentions[table].place_settings = Some(n);
@@ -1284,7 +1475,9 @@ impl<'a> Interp<'a> {
         let m = r.m;
         let cat = self.mentions[m].category.clone();
         let room = self.mentions[m].room;
-        if let Some(e) = (0..m).rev().find(|&i| self.alive(i) && self.mentions[i].room == room && self.mentions[i].category == cat) {
+        if let Some(e) = (0..m).rev().find(|&i| {
+            self.alive(i) && self.mentions[i].room == room && self.mentions[i].category == cat
+        }) {
             self.mentions[e].count = self.mentions[m].count;
             self.absorbed[m] = Some(Some(e));
         }

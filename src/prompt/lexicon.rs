@@ -171,10 +171,11 @@ impl Lexicon {
             file: "lexicon/words.json",
             source,
         })?;
-        let o: ObjectsFile = serde_json::from_str(objects).map_err(|source| LexiconError::Parse {
-            file: "lexicon/objects.json",
-            source,
-        })?;
+        let o: ObjectsFile =
+            serde_json::from_str(objects).map_err(|source| LexiconError::Parse {
+                file: "lexicon/objects.json",
+                source,
+            })?;
         let mut spellings: HashMap<String, usize> = HashMap::new();
         for (i, e) in o.objects.iter().enumerate() {
             for s in std::iter::once(&e.noun).chain(&e.synonyms) {
@@ -253,7 +254,9 @@ impl Lexicon {
 
     /// The entry a spelling names.
     pub fn entry(&self, spelling: &str) -> Option<&NounEntry> {
-        self.spellings.get(spelling).and_then(|&i| self.objects.get(i))
+        self.spellings
+            .get(spelling)
+            .and_then(|&i| self.objects.get(i))
     }
 
     /// The entry of a canonical noun or any spelling of it.
@@ -293,7 +296,9 @@ impl Lexicon {
             let all: Vec<String> = words.iter().map(|w| self.singular(w)).collect();
             if let Some(i) = self.entry_index(&all.join(" ")) {
                 // "loaves of bread": the first word carries the number.
-                let any_plural = words.iter().any(|w| self.is_plural(w) && !self.plurale_tantum(w));
+                let any_plural = words
+                    .iter()
+                    .any(|w| self.is_plural(w) && !self.plurale_tantum(w));
                 return Some((len, i, plural || any_plural));
             }
         }
@@ -354,7 +359,9 @@ impl Lexicon {
             }
         }
         let w = tokens.get(at)?.text.as_str();
-        self.colors.get(w).map(|hex| (1, w.to_string(), hex.as_str()))
+        self.colors
+            .get(w)
+            .map(|hex| (1, w.to_string(), hex.as_str()))
     }
 
     /// Number word or digits.
@@ -489,9 +496,32 @@ impl Lexicon {
             || self.negations.contains(word)
             || matches!(
                 word,
-                "with" | "of" | "for" | "there" | "it" | "them" | "they" | "each" | "here" | "also"
-                    | "very" | "too" | "so" | "as" | "than" | "such" | "if" | "when" | "to"
-                    | "neatly" | "nicely" | "together" | "is" | "are" | "and" | "or"
+                "with"
+                    | "of"
+                    | "for"
+                    | "there"
+                    | "it"
+                    | "them"
+                    | "they"
+                    | "each"
+                    | "here"
+                    | "also"
+                    | "very"
+                    | "too"
+                    | "so"
+                    | "as"
+                    | "than"
+                    | "such"
+                    | "if"
+                    | "when"
+                    | "to"
+                    | "neatly"
+                    | "nicely"
+                    | "together"
+                    | "is"
+                    | "are"
+                    | "and"
+                    | "or"
             )
     }
 }
@@ -595,7 +625,10 @@ mod tests {
         let l = lexicon();
         let t = lex("two bedside tables and loaves of bread and an x-ray machine");
         let (n, i, plural) = l.noun_at(&t, 1).unwrap();
-        assert_eq!((n, l.objects[i].noun.as_str(), plural), (2, "nightstand", true));
+        assert_eq!(
+            (n, l.objects[i].noun.as_str(), plural),
+            (2, "nightstand", true)
+        );
         let (n, i, _) = l.noun_at(&t, 4).unwrap();
         assert_eq!((n, l.objects[i].noun.as_str()), (3, "bread loaf"));
         let (n, i, _) = l.noun_at(&t, 9).unwrap();

@@ -38,7 +38,9 @@ impl Count {
         match (self, k) {
             (Count::Several, _) | (_, Count::Several) => Count::Several,
             (Count::Exactly(a), Count::Exactly(b)) => Count::Exactly(a * b),
-            (Count::Exactly(a) | Count::AtLeast(a), Count::Exactly(b) | Count::AtLeast(b)) => Count::AtLeast(a * b),
+            (Count::Exactly(a) | Count::AtLeast(a), Count::Exactly(b) | Count::AtLeast(b)) => {
+                Count::AtLeast(a * b)
+            }
         }
     }
 
@@ -225,19 +227,43 @@ mod tests {
 
     #[test]
     fn counts_from_phrases() {
-        assert_eq!(phrase_count(Some("at_least"), Some(10), false, None, true), Count::AtLeast(10));
-        assert_eq!(phrase_count(None, Some(10), true, None, true), Count::AtLeast(10));
-        assert_eq!(phrase_count(Some("more_than"), Some(9), false, None, true), Count::AtLeast(10));
-        assert_eq!(phrase_count(None, None, false, Some("indefinite"), false), Count::Exactly(1));
+        assert_eq!(
+            phrase_count(Some("at_least"), Some(10), false, None, true),
+            Count::AtLeast(10)
+        );
+        assert_eq!(
+            phrase_count(None, Some(10), true, None, true),
+            Count::AtLeast(10)
+        );
+        assert_eq!(
+            phrase_count(Some("more_than"), Some(9), false, None, true),
+            Count::AtLeast(10)
+        );
+        assert_eq!(
+            phrase_count(None, None, false, Some("indefinite"), false),
+            Count::Exactly(1)
+        );
         assert_eq!(phrase_count(None, None, false, None, true), Count::Several);
-        assert_eq!(phrase_count(Some("dozen"), None, false, None, true), Count::Exactly(12));
-        assert_eq!(phrase_count(None, None, false, Some("several"), true), Count::Several);
+        assert_eq!(
+            phrase_count(Some("dozen"), None, false, None, true),
+            Count::Exactly(12)
+        );
+        assert_eq!(
+            phrase_count(None, None, false, Some("several"), true),
+            Count::Several
+        );
     }
 
     #[test]
     fn per_parent_totals() {
-        assert_eq!(Count::Exactly(4).times(Count::Exactly(4)), Count::Exactly(16));
-        assert_eq!(Count::AtLeast(3).times(Count::Exactly(2)), Count::AtLeast(6));
+        assert_eq!(
+            Count::Exactly(4).times(Count::Exactly(4)),
+            Count::Exactly(16)
+        );
+        assert_eq!(
+            Count::AtLeast(3).times(Count::Exactly(2)),
+            Count::AtLeast(6)
+        );
         assert_eq!(Count::Exactly(1).times(Count::Several), Count::Several);
         assert_eq!(Count::Several.minimum(), 2);
     }

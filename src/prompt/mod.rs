@@ -62,7 +62,10 @@ pub struct Reading {
 impl Reading {
     /// Indices and mentions of one room.
     pub fn room_mentions(&self, room: usize) -> impl Iterator<Item = (usize, &Mention)> {
-        self.mentions.iter().enumerate().filter(move |(_, m)| m.room == room)
+        self.mentions
+            .iter()
+            .enumerate()
+            .filter(move |(_, m)| m.room == room)
     }
 
     /// The total count of mention `i`: a per-parent count times the parent's total, a
@@ -86,7 +89,9 @@ impl Reading {
                     return m.count;
                 };
                 let settings = Count::Exactly(t.place_settings.unwrap_or(1));
-                m.count.times(settings).times(self.total_depth(table, depth + 1))
+                m.count
+                    .times(settings)
+                    .times(self.total_depth(table, depth + 1))
             }
         }
     }
@@ -179,7 +184,9 @@ pub fn read(prompt: &str) -> Reading {
             }
         }
     }
-    let room_type = rooms.first().map_or_else(|| "room".to_string(), |r| r.room_type.clone());
+    let room_type = rooms
+        .first()
+        .map_or_else(|| "room".to_string(), |r| r.room_type.clone());
     let size_scale = match st.scope {
         Scope::Room => rooms.first().map_or(st.size_scale, |r| r.size_scale),
         Scope::House => st.size_scale,
@@ -267,21 +274,49 @@ fn finish(
     // Support from relations: on the wall, from the ceiling, on another object, or placed on
     // the floor of the room.
     for m in &mut out {
-        let explicit = |k: RelationKind, t: Target| m.relations.iter().any(|r| r.kind == k && r.target == t && !r.implied);
-        let mounted = m.attributes.adjectives.iter().any(|a| a == "wall-mounted" || a == "mounted");
+        let explicit = |k: RelationKind, t: Target| {
+            m.relations
+                .iter()
+                .any(|r| r.kind == k && r.target == t && !r.implied)
+        };
+        let mounted = m
+            .attributes
+            .adjectives
+            .iter()
+            .any(|a| a == "wall-mounted" || a == "mounted");
         if m.relations.iter().any(|r| r.kind == RelationKind::Hanging) {
             m.support = Support::Ceiling;
         } else if explicit(RelationKind::On, Target::Wall) || mounted {
             m.support = Support::Wall;
-        } else if m.relations.iter().any(|r| r.is_support() && r.kind != RelationKind::With) && m.support == Support::Floor {
+        } else if m
+            .relations
+            .iter()
+            .any(|r| r.is_support() && r.kind != RelationKind::With)
+            && m.support == Support::Floor
+        {
             let parent_small = true;
-            if parent_small && lex.lookup(&m.category).is_none_or(|e| !e.holds || e.support != Support::Floor) {
+            if parent_small
+                && lex
+                    .lookup(&m.category)
+                    .is_none_or(|e| !e.holds || e.support != Support::Floor)
+            {
                 m.support = Support::Surface;
             }
         } else if m.support == Support::Surface
-            && !m.relations.iter().any(|r| r.is_support() || r.target == Target::Floor)
+            && !m
+                .relations
+                .iter()
+                .any(|r| r.is_support() || r.target == Target::Floor)
             && m.relations.iter().any(|r| {
-                !r.implied && matches!(r.target, Target::Wall | Target::Corner | Target::Room | Target::Window | Target::Entrance)
+                !r.implied
+                    && matches!(
+                        r.target,
+                        Target::Wall
+                            | Target::Corner
+                            | Target::Room
+                            | Target::Window
+                            | Target::Entrance
+                    )
             })
         {
             // "a printer sits in the corner": on the floor.
@@ -297,7 +332,12 @@ fn finish(
         }
         let cat = out[g].category.clone();
         let covers: Vec<usize> = (0..out.len())
-            .filter(|&i| i != g && out[i].room == out[g].room && parents[i] == parents[g] && parents[g].is_some())
+            .filter(|&i| {
+                i != g
+                    && out[i].room == out[g].room
+                    && parents[i] == parents[g]
+                    && parents[g].is_some()
+            })
             .filter(|&i| {
                 let mut k = lex.lookup(&out[i].category).and_then(|e| e.kind_of.clone());
                 for _ in 0..3 {

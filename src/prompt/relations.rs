@@ -127,7 +127,8 @@ impl Relation {
 
     /// True when the relation puts the object on or in another object (a support relation).
     pub fn is_support(&self) -> bool {
-        matches!(self.kind, RelationKind::On | RelationKind::In) && matches!(self.target, Target::Mention(_))
+        matches!(self.kind, RelationKind::On | RelationKind::In)
+            && matches!(self.target, Target::Mention(_))
     }
 }
 
@@ -159,7 +160,9 @@ pub(crate) fn normalize(
     let lm = landmark.unwrap_or("");
     // The room's middle, front and back, however they are introduced.
     match (prep, lm) {
-        ("center_of", _) | ("in" | "at" | "on" | "to", "center") => return Some((K::Center, Target::Room)),
+        ("center_of", _) | ("in" | "at" | "on" | "to", "center") => {
+            return Some((K::Center, Target::Room));
+        }
         ("front_of", _) | ("in" | "at" | "to", "front") => return Some((K::FrontOf, Target::Room)),
         ("back_of", _) | ("in" | "at" | "to", "back") => return Some((K::BackOf, Target::Room)),
         ("end_of", "room") | ("at" | "in", "end") => return Some((K::EndOf, Target::Room)),

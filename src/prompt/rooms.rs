@@ -139,8 +139,22 @@ pub(crate) struct Structure {
 
 fn ordinal_word(n: u32) -> &'static str {
     const W: [&str; 16] = [
-        "", "first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth", "ninth", "tenth", "eleventh",
-        "twelfth", "thirteenth", "fourteenth", "fifteenth",
+        "",
+        "first",
+        "second",
+        "third",
+        "fourth",
+        "fifth",
+        "sixth",
+        "seventh",
+        "eighth",
+        "ninth",
+        "tenth",
+        "eleventh",
+        "twelfth",
+        "thirteenth",
+        "fourteenth",
+        "fifteenth",
     ];
     W.get(n as usize).copied().unwrap_or("")
 }
@@ -148,13 +162,18 @@ fn ordinal_word(n: u32) -> &'static str {
 /// Reads the room list of the first sentence's chunks. `tokens` give the house name.
 pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Structure {
     let with_at = first.iter().position(|c| c.item == Item::With);
-    let head_np = first[..with_at.unwrap_or(first.len())].iter().find_map(|c| match &c.item {
-        Item::Np(np) => Some((np.as_ref(), c.range.clone())),
-        _ => None,
-    });
+    let head_np = first[..with_at.unwrap_or(first.len())]
+        .iter()
+        .find_map(|c| match &c.item {
+            Item::Np(np) => Some((np.as_ref(), c.range.clone())),
+            _ => None,
+        });
     let head_np = head_np.as_ref().map(|(np, r)| (*np, r.clone()));
     let size_scale = head_np.as_ref().map_or(1.0, |(np, _)| size_of(lex, np));
-    let styles = head_np.as_ref().map(|(np, _)| np.attrs.styles.clone()).unwrap_or_default();
+    let styles = head_np
+        .as_ref()
+        .map(|(np, _)| np.attrs.styles.clone())
+        .unwrap_or_default();
     let density = head_np.as_ref().and_then(|(np, _)| density_of(lex, np));
     // Room phrases after "with"; "X with en-suite Ys" makes Ys children of X.
     let mut listed: Vec<(&Np, Option<usize>)> = Vec::new();
@@ -183,8 +202,13 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Str
             }
         }
     }
-    let head_is_room = head_np.as_ref().is_some_and(|(np, _)| matches!(np.head, Head::Room { .. }));
-    let listed_count: u32 = listed.iter().map(|(np, _)| np.number.unwrap_or(1).max(1)).sum();
+    let head_is_room = head_np
+        .as_ref()
+        .is_some_and(|(np, _)| matches!(np.head, Head::Room { .. }));
+    let listed_count: u32 = listed
+        .iter()
+        .map(|(np, _)| np.number.unwrap_or(1).max(1))
+        .sum();
     // "A pharmacy with a waiting area": one room with a zone; "a bedroom with an en-suite
     // bathroom": two rooms.
     let zone = |np: &Np| matches!(&np.head, Head::Room { words, .. } if ["area", "corner", "nook", "zone", "space"].iter().any(|z| words.ends_with(z)));
@@ -272,7 +296,10 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Str
     }
     // Names stay unique: a second "bathroom" listed separately becomes "bathroom 2".
     for i in 0..rooms.len() {
-        let dup = rooms[..i].iter().filter(|r| r.name == rooms[i].name).count();
+        let dup = rooms[..i]
+            .iter()
+            .filter(|r| r.name == rooms[i].name)
+            .count();
         if dup > 0 {
             rooms[i].name = format!("{} {}", rooms[i].name, dup + 1);
         }
@@ -285,7 +312,11 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Str
         .iter()
         .filter(|t| t.is_word())
         .map(|t| t.text.as_str())
-        .filter(|w| lex.determiner(w).is_none() && lex.room_size(w).is_none() && lex.size_adjective(w).is_none())
+        .filter(|w| {
+            lex.determiner(w).is_none()
+                && lex.room_size(w).is_none()
+                && lex.size_adjective(w).is_none()
+        })
         .collect();
     let house_type = (!words.is_empty()).then(|| words.join(" "));
     Structure {
@@ -300,7 +331,11 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Str
 
 impl RoomReading {
     fn size_scale_or(&self, fallback: f64) -> f64 {
-        if self.size_scale != 1.0 { self.size_scale } else { fallback }
+        if self.size_scale != 1.0 {
+            self.size_scale
+        } else {
+            fallback
+        }
     }
 }
 
@@ -323,7 +358,10 @@ pub(crate) fn resolve(rooms: &[RoomReading], np: &Np, current: usize) -> Option<
     if np.det.as_deref() == Some("possessive") {
         // The focus room's own child of that type, or the focus room's parent's child.
         let owner = rooms.get(current).and_then(|r| r.parent).unwrap_or(current);
-        if let Some(i) = rooms.iter().position(|r| r.parent == Some(owner) && r.room_type == *key) {
+        if let Some(i) = rooms
+            .iter()
+            .position(|r| r.parent == Some(owner) && r.room_type == *key)
+        {
             return Some(i);
         }
     }
@@ -331,14 +369,24 @@ pub(crate) fn resolve(rooms: &[RoomReading], np: &Np, current: usize) -> Option<
         .filter(|&i| rooms[i].room_type == *key && rooms[i].parent.is_none())
         .collect();
     let same = if same.is_empty() {
-        (0..rooms.len()).filter(|&i| rooms[i].room_type == *key).collect()
+        (0..rooms.len())
+            .filter(|&i| rooms[i].room_type == *key)
+            .collect()
     } else {
         same
     };
     if let Some(o) = np.ordinal {
         // Prefer rooms listed under the same words ("the first kids bedroom").
-        let by_words: Vec<usize> = same.iter().copied().filter(|&i| rooms[i].words == *words).collect();
-        let pool = if by_words.is_empty() { &same } else { &by_words };
+        let by_words: Vec<usize> = same
+            .iter()
+            .copied()
+            .filter(|&i| rooms[i].words == *words)
+            .collect();
+        let pool = if by_words.is_empty() {
+            &same
+        } else {
+            &by_words
+        };
         return pool.get(o.saturating_sub(1) as usize).copied();
     }
     let by_words = same.iter().copied().find(|&i| rooms[i].words == *words);

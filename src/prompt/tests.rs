@@ -6,7 +6,12 @@ fn find<'a>(r: &'a Reading, cat: &str) -> &'a Mention {
     r.mentions
         .iter()
         .find(|m| m.category == cat)
-        .unwrap_or_else(|| panic!("no {cat} in {:#?}", r.mentions.iter().map(|m| &m.category).collect::<Vec<_>>()))
+        .unwrap_or_else(|| {
+            panic!(
+                "no {cat} in {:#?}",
+                r.mentions.iter().map(|m| &m.category).collect::<Vec<_>>()
+            )
+        })
 }
 
 #[test]

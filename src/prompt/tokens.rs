@@ -78,10 +78,15 @@ pub fn lex(text: &str) -> Vec<Token> {
             continue;
         }
         chars.next();
-        if matches!(c, ',' | '.' | ';' | ':' | '!' | '?' | '(' | ')' | '+' | '&' | '/') {
+        if matches!(
+            c,
+            ',' | '.' | ';' | ':' | '!' | '?' | '(' | ')' | '+' | '&' | '/'
+        ) {
             // A decimal point inside a number ("2.5 m") is not a sentence end.
             let in_number = c == '.'
-                && out.last().is_some_and(|t: &Token| matches!(t.kind, TokenKind::Number(_)) && t.end == i)
+                && out
+                    .last()
+                    .is_some_and(|t: &Token| matches!(t.kind, TokenKind::Number(_)) && t.end == i)
                 && chars.peek().is_some_and(|&(_, d)| d.is_ascii_digit());
             if in_number {
                 continue;
@@ -169,7 +174,9 @@ mod tests {
         let texts: Vec<&str> = t.iter().map(|t| t.text.as_str()).collect();
         assert_eq!(
             texts,
-            ["a", "teacher", "desk", ",", "45-pound", "plates", ";", "an", "x-ray", "room", "."]
+            [
+                "a", "teacher", "desk", ",", "45-pound", "plates", ";", "an", "x-ray", "room", "."
+            ]
         );
         assert!(t[8].capitalized());
         assert_eq!(&"A teacher's desk"[t[1].start..t[1].end], "teacher");

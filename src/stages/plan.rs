@@ -113,7 +113,9 @@ impl Arrangement {
     /// The other object this arrangement refers to, if any.
     pub fn target(&self) -> Option<&str> {
         match self {
-            Arrangement::Around { parent } | Arrangement::Inside { parent } | Arrangement::On { parent } => Some(parent),
+            Arrangement::Around { parent }
+            | Arrangement::Inside { parent }
+            | Arrangement::On { parent } => Some(parent),
             Arrangement::Facing { target }
             | Arrangement::Above { target }
             | Arrangement::Beside { target }
@@ -130,7 +132,9 @@ impl Arrangement {
     fn with_target(&self, f: impl Fn(&str) -> String) -> Arrangement {
         let mut a = self.clone();
         match &mut a {
-            Arrangement::Around { parent } | Arrangement::Inside { parent } | Arrangement::On { parent } => *parent = f(parent),
+            Arrangement::Around { parent }
+            | Arrangement::Inside { parent }
+            | Arrangement::On { parent } => *parent = f(parent),
             Arrangement::Facing { target }
             | Arrangement::Above { target }
             | Arrangement::Beside { target }
@@ -235,7 +239,10 @@ impl RoomPlan {
 
     /// Total count of a noun over the whole plan.
     pub fn count_of(&self, noun: &str) -> u32 {
-        self.all_wants().filter(|w| w.noun == noun).map(|w| w.count).sum()
+        self.all_wants()
+            .filter(|w| w.noun == noun)
+            .map(|w| w.count)
+            .sum()
     }
 }
 
@@ -290,12 +297,20 @@ fn covers(lex: &Lexicon, a: &str, b: &str) -> bool {
 }
 
 fn is_seat(lex: &Lexicon, noun: &str) -> bool {
-    covers(lex, noun, "chair") || covers(lex, noun, "stool") || covers(lex, noun, "seating") || noun.ends_with("chair") || noun.ends_with("stool") || noun.ends_with("bench")
+    covers(lex, noun, "chair")
+        || covers(lex, noun, "stool")
+        || covers(lex, noun, "seating")
+        || noun.ends_with("chair")
+        || noun.ends_with("stool")
+        || noun.ends_with("bench")
 }
 
 fn is_table_like(lex: &Lexicon, noun: &str) -> bool {
-    lex.lookup(noun).is_some_and(|e| e.holds && e.support == Support::Floor)
-        && ["table", "desk", "counter", "workbench"].iter().any(|k| covers(lex, noun, k) || noun.ends_with(k))
+    lex.lookup(noun)
+        .is_some_and(|e| e.holds && e.support == Support::Floor)
+        && ["table", "desk", "counter", "workbench"]
+            .iter()
+            .any(|k| covers(lex, noun, k) || noun.ends_with(k))
 }
 
 fn place_to_arrangement(p: &Place) -> Arrangement {
@@ -328,7 +343,9 @@ pub fn plan_room(reading: &Reading) -> RoomPlan {
 
 /// Builds the plans of every room of a reading, in room order.
 pub fn plan_rooms(reading: &Reading) -> Vec<RoomPlan> {
-    (0..reading.rooms.len().max(1)).map(|i| plan_house_room(reading, i)).collect()
+    (0..reading.rooms.len().max(1))
+        .map(|i| plan_house_room(reading, i))
+        .collect()
 }
 
 /// Builds the plan of room `room` of a reading: the room's mentions merged with its room
@@ -340,7 +357,9 @@ pub fn plan_house_room(reading: &Reading, room: usize) -> RoomPlan {
     let room_type = info.map_or(reading.room_type.as_str(), |r| r.room_type.as_str());
     let rt = kb.room(room_type).or_else(|| kb.room("room"));
     let density = info.and_then(|r| r.density).or(reading.density);
-    let styles: Vec<String> = info.map(|r| r.styles.clone()).unwrap_or_else(|| reading.styles.clone());
+    let styles: Vec<String> = info
+        .map(|r| r.styles.clone())
+        .unwrap_or_else(|| reading.styles.clone());
     let mut b = Builder {
         lex,
         kb,
@@ -394,7 +413,10 @@ impl Builder<'_> {
     }
 
     fn excluded(&self, noun: &str) -> bool {
-        self.plan.excluded.iter().any(|x| covers(self.lex, noun, x) || x == noun)
+        self.plan
+            .excluded
+            .iter()
+            .any(|x| covers(self.lex, noun, x) || x == noun)
     }
 
     /// Count of mention `i` in this plan: a plain count, or a per-parent count resolved
@@ -423,7 +445,12 @@ impl Builder<'_> {
             }
             Some(Per::Setting { table }) => {
                 let (u, a) = unit(m, None);
-                let settings = self.reading.mentions.get(table).and_then(|t| t.place_settings).unwrap_or(1);
+                let settings = self
+                    .reading
+                    .mentions
+                    .get(table)
+                    .and_then(|t| t.place_settings)
+                    .unwrap_or(1);
                 let (n, b) = self.count(table, depth + 1);
                 (u * settings * n, a || b)
             }
@@ -449,7 +476,12 @@ impl Builder<'_> {
             let rule = self
                 .rt
                 .and_then(|r| r.surfaces.iter().find(|s| s.items.contains(&m.category)))
-                .or_else(|| self.kb.surface_rules().iter().find(|s| s.items.contains(&m.category)));
+                .or_else(|| {
+                    self.kb
+                        .surface_rules()
+                        .iter()
+                        .find(|s| s.items.contains(&m.category))
+                });
             if let Some(rule) = rule {
                 return pick(rule.count, t).max(3);
             }
@@ -478,7 +510,11 @@ impl Builder<'_> {
     /// Arrangement from a mention's relations (explicit first), or None.
     fn relation_arrangement(&self, m: &Mention, count: u32) -> Option<Arrangement> {
         let mentions = &self.reading.mentions;
-        let cat = |t: Target| -> Option<String> { t.mention().and_then(|j| mentions.get(j)).map(|x| x.category.clone()) };
+        let cat = |t: Target| -> Option<String> {
+            t.mention()
+                .and_then(|j| mentions.get(j))
+                .map(|x| x.category.clone())
+        };
         let mut rels: Vec<&prompt::Relation> = m.relations.iter().collect();
         rels.sort_by_key(|r| r.implied);
         // Most specific first: seats around tables, facing, between, flanking, beside...
@@ -488,7 +524,10 @@ impl Builder<'_> {
             RelationKind::Facing => 2,
             RelationKind::Between => 3,
             RelationKind::Flanking => 4,
-            RelationKind::Under | RelationKind::Behind | RelationKind::NextTo | RelationKind::With => 5,
+            RelationKind::Under
+            | RelationKind::Behind
+            | RelationKind::NextTo
+            | RelationKind::With => 5,
             RelationKind::Near => 6,
             _ => 7,
         };
@@ -503,43 +542,76 @@ impl Builder<'_> {
                         Arrangement::InFront { target }
                     }
                 }),
-                (RelationKind::Facing, Target::EachOther) => Some(Arrangement::Facing { target: m.category.clone() }),
+                (RelationKind::Facing, Target::EachOther) => Some(Arrangement::Facing {
+                    target: m.category.clone(),
+                }),
                 (RelationKind::Facing, Target::Window) => Some(Arrangement::NearWindow),
-                (RelationKind::Facing, t @ Target::Mention(_)) => cat(t).map(|target| Arrangement::Facing { target }),
+                (RelationKind::Facing, t @ Target::Mention(_)) => {
+                    cat(t).map(|target| Arrangement::Facing { target })
+                }
                 (RelationKind::Between, t) => {
                     let mut targets: Vec<String> = cat(t).into_iter().collect();
                     targets.extend(r.second.and_then(cat));
                     (!targets.is_empty()).then_some(Arrangement::Between { targets })
                 }
                 (RelationKind::Flanking, Target::Entrance) => Some(Arrangement::NearEntrance),
-                (RelationKind::Flanking, t) => cat(t).map(|target| Arrangement::Flanking { target }),
+                (RelationKind::Flanking, t) => {
+                    cat(t).map(|target| Arrangement::Flanking { target })
+                }
                 (RelationKind::Under, t) => cat(t).map(|target| Arrangement::Under { target }),
                 (RelationKind::Behind, t) => cat(t).map(|target| Arrangement::Behind { target }),
-                (RelationKind::NextTo | RelationKind::Near, t @ Target::Mention(_)) => cat(t).map(|target| Arrangement::Beside { target }),
+                (RelationKind::NextTo | RelationKind::Near, t @ Target::Mention(_)) => {
+                    cat(t).map(|target| Arrangement::Beside { target })
+                }
                 (RelationKind::With, t @ Target::Mention(_)) => cat(t).and_then(|target| {
                     if is_seat(self.lex, &m.category) && is_table_like(self.lex, &target) {
                         Some(Arrangement::Around { parent: target })
-                    } else if self.kb.placement(&m.category) == Some(&Place::Flanking(target.clone())) {
+                    } else if self.kb.placement(&m.category)
+                        == Some(&Place::Flanking(target.clone()))
+                    {
                         Some(Arrangement::Flanking { target })
                     } else {
                         None
                     }
                 }),
-                (RelationKind::AcrossFrom, Target::Entrance) => Some(Arrangement::AcrossFrom { target: "entrance".into() }),
-                (RelationKind::AcrossFrom, t) => cat(t).map(|target| Arrangement::AcrossFrom { target }),
-                (RelationKind::Along, Target::Wall) if count >= 2 => Some(Arrangement::RowAlongWall),
-                (RelationKind::Against | RelationKind::Along | RelationKind::Near | RelationKind::NextTo, Target::Wall) => {
-                    Some(Arrangement::AgainstWall)
+                (RelationKind::AcrossFrom, Target::Entrance) => Some(Arrangement::AcrossFrom {
+                    target: "entrance".into(),
+                }),
+                (RelationKind::AcrossFrom, t) => {
+                    cat(t).map(|target| Arrangement::AcrossFrom { target })
                 }
-                (RelationKind::In | RelationKind::Near | RelationKind::NextTo, Target::Corner) => Some(Arrangement::Corner),
+                (RelationKind::Along, Target::Wall) if count >= 2 => {
+                    Some(Arrangement::RowAlongWall)
+                }
+                (
+                    RelationKind::Against
+                    | RelationKind::Along
+                    | RelationKind::Near
+                    | RelationKind::NextTo,
+                    Target::Wall,
+                ) => Some(Arrangement::AgainstWall),
+                (RelationKind::In | RelationKind::Near | RelationKind::NextTo, Target::Corner) => {
+                    Some(Arrangement::Corner)
+                }
                 (RelationKind::Center, _) => Some(Arrangement::Center),
-                (RelationKind::Near | RelationKind::NextTo | RelationKind::In | RelationKind::Against, Target::Window) => {
-                    Some(Arrangement::NearWindow)
-                }
-                (RelationKind::Near | RelationKind::NextTo | RelationKind::In, Target::Entrance) => Some(Arrangement::NearEntrance),
-                (RelationKind::BackOf, _) => Some(Arrangement::AcrossFrom { target: "entrance".into() }),
+                (
+                    RelationKind::Near
+                    | RelationKind::NextTo
+                    | RelationKind::In
+                    | RelationKind::Against,
+                    Target::Window,
+                ) => Some(Arrangement::NearWindow),
+                (
+                    RelationKind::Near | RelationKind::NextTo | RelationKind::In,
+                    Target::Entrance,
+                ) => Some(Arrangement::NearEntrance),
+                (RelationKind::BackOf, _) => Some(Arrangement::AcrossFrom {
+                    target: "entrance".into(),
+                }),
                 (RelationKind::FrontOf, _) => Some(Arrangement::FrontOfRoom),
-                (RelationKind::Above, t @ Target::Mention(_)) => cat(t).map(|target| Arrangement::Above { target }),
+                (RelationKind::Above, t @ Target::Mention(_)) => {
+                    cat(t).map(|target| Arrangement::Above { target })
+                }
                 _ => None,
             };
             if a.is_some() {
@@ -561,7 +633,8 @@ impl Builder<'_> {
     // ---- explicit content -------------------------------------------------------------
 
     fn explicit(&mut self) {
-        let mentions: Vec<(usize, Mention)> = self.mentions().map(|(i, m)| (i, m.clone())).collect();
+        let mentions: Vec<(usize, Mention)> =
+            self.mentions().map(|(i, m)| (i, m.clone())).collect();
         for (_, m) in mentions.iter().filter(|(_, m)| m.negated) {
             if !self.plan.excluded.contains(&m.category) {
                 self.plan.excluded.push(m.category.clone());
@@ -619,15 +692,22 @@ impl Builder<'_> {
                 }
                 Support::Wall => {
                     want.arrangement = self.relation_arrangement(m, count).unwrap_or_else(|| {
-                        self.kb_arrangement(&m.category).unwrap_or(Arrangement::Free)
+                        self.kb_arrangement(&m.category)
+                            .unwrap_or(Arrangement::Free)
                     });
-                    want.height_m = self.rt.and_then(|r| r.item(&m.category)).and_then(|k| k.height);
+                    want.height_m = self
+                        .rt
+                        .and_then(|r| r.item(&m.category))
+                        .and_then(|k| k.height);
                     self.plan.wall.push(want);
                 }
                 Support::Ceiling => {
                     want.arrangement = match self.relation_arrangement(m, count) {
                         Some(a @ Arrangement::Above { .. }) => a,
-                        _ => self.kb_arrangement(&m.category).filter(|a| matches!(a, Arrangement::Above { .. })).unwrap_or(Arrangement::Free),
+                        _ => self
+                            .kb_arrangement(&m.category)
+                            .filter(|a| matches!(a, Arrangement::Above { .. }))
+                            .unwrap_or(Arrangement::Free),
                     };
                     self.plan.ceiling.push(want);
                 }
@@ -642,7 +722,10 @@ impl Builder<'_> {
         let support = m
             .relations
             .iter()
-            .filter(|r| matches!(r.kind, RelationKind::On | RelationKind::In) || (r.kind == RelationKind::With && r.target.mention().is_some()))
+            .filter(|r| {
+                matches!(r.kind, RelationKind::On | RelationKind::In)
+                    || (r.kind == RelationKind::With && r.target.mention().is_some())
+            })
             .min_by_key(|r| r.implied);
         let mut parent = String::new();
         if let Some(r) = support {
@@ -712,34 +795,61 @@ impl Builder<'_> {
             let per = t.place_settings.unwrap_or(0);
             let (tables_n, _) = self.count(i, 0);
             let seats = per * tables_n;
-            let has_seats = self.plan.furniture.iter().any(|w| is_seat(self.lex, &w.noun));
+            let has_seats = self
+                .plan
+                .furniture
+                .iter()
+                .any(|w| is_seat(self.lex, &w.noun));
             if !has_seats && seats > 0 && !self.excluded("chair") {
-                let seat = self.kb.seat_for(&t.category).map_or("chair", |(s, _)| s).to_string();
+                let seat = self
+                    .kb
+                    .seat_for(&t.category)
+                    .map_or("chair", |(s, _)| s)
+                    .to_string();
                 self.plan.furniture.push(Want {
                     noun: seat.clone(),
                     description: self.default_description(&seat, Support::Floor),
                     count: seats.min(MAX_COUNT),
                     explicit: false,
                     at_least: false,
-                    arrangement: Arrangement::Around { parent: t.category.clone() },
+                    arrangement: Arrangement::Around {
+                        parent: t.category.clone(),
+                    },
                     height_m: None,
                     parent_instance: None,
                 });
             } else if has_seats {
                 // Seats the prompt counted go around the set table.
-                for w in self.plan.furniture.iter_mut().filter(|w| is_seat(self.lex, &w.noun)) {
+                for w in self
+                    .plan
+                    .furniture
+                    .iter_mut()
+                    .filter(|w| is_seat(self.lex, &w.noun))
+                {
                     if matches!(w.arrangement, Arrangement::AgainstWall | Arrangement::Free) {
-                        w.arrangement = Arrangement::Around { parent: t.category.clone() };
+                        w.arrangement = Arrangement::Around {
+                            parent: t.category.clone(),
+                        };
                     }
                 }
             }
-            let has_items = self.surface.iter().any(|s| s.place_settings && s.parent == t.category);
+            let has_items = self
+                .surface
+                .iter()
+                .any(|s| s.place_settings && s.parent == t.category);
             if !has_items && seats > 0 {
                 let rule = self
                     .kb
                     .surface_rule("dining table")
                     .map(|r| r.items.clone())
-                    .unwrap_or_else(|| vec!["plate".into(), "glass".into(), "fork".into(), "knife".into()]);
+                    .unwrap_or_else(|| {
+                        vec![
+                            "plate".into(),
+                            "glass".into(),
+                            "fork".into(),
+                            "knife".into(),
+                        ]
+                    });
                 for item in rule {
                     if self.excluded(&item) {
                         continue;
@@ -793,7 +903,11 @@ impl Builder<'_> {
         let explicit_floor = self.plan.furniture.iter().filter(|w| w.explicit).count();
         // A prompt that lists its furniture gets the essentials, not every option.
         let t_optional = if explicit_floor >= 3 { 0.0 } else { t };
-        let scale = self.reading.rooms.get(self.room).map_or(1.0, |r| r.size_scale);
+        let scale = self
+            .reading
+            .rooms
+            .get(self.room)
+            .map_or(1.0, |r| r.size_scale);
         let add = |b: &mut Self, item: &KbItem, support: Support| {
             if b.excluded(&item.noun) {
                 return;
@@ -812,11 +926,16 @@ impl Builder<'_> {
                 return;
             }
             let mut arrangement = item.place.as_ref().map_or(
-                if support == Support::Floor { Arrangement::AgainstWall } else { Arrangement::Free },
+                if support == Support::Floor {
+                    Arrangement::AgainstWall
+                } else {
+                    Arrangement::Free
+                },
                 place_to_arrangement,
             );
             // Rule targets name default nouns; use what the plan has instead.
-            arrangement = arrangement.with_target(|n| b.floor_of.get(n).cloned().unwrap_or_else(|| n.to_string()));
+            arrangement = arrangement
+                .with_target(|n| b.floor_of.get(n).cloned().unwrap_or_else(|| n.to_string()));
             if let Some(target) = arrangement.target().map(str::to_string)
                 && !b.has(&target)
             {
@@ -860,7 +979,12 @@ impl Builder<'_> {
     }
 
     fn has(&self, noun: &str) -> bool {
-        self.plan.furniture.iter().chain(&self.plan.wall).chain(&self.plan.ceiling).any(|w| w.noun == noun)
+        self.plan
+            .furniture
+            .iter()
+            .chain(&self.plan.wall)
+            .chain(&self.plan.ceiling)
+            .any(|w| w.noun == noun)
     }
 
     /// Small objects without a named parent go where they usually rest; a usual parent the
@@ -872,14 +996,25 @@ impl Builder<'_> {
                 continue;
             }
             let noun = self.surface[k].want.noun.clone();
-            let rests: Vec<String> = lex.lookup(&noun).map(|e| e.rests_on.clone()).unwrap_or_default();
+            let rests: Vec<String> = lex
+                .lookup(&noun)
+                .map(|e| e.rests_on.clone())
+                .unwrap_or_default();
             let room_rule = self
                 .rt
-                .and_then(|r| r.surfaces.iter().find(|s| s.items.contains(&noun) && self.has(&s.parent)))
+                .and_then(|r| {
+                    r.surfaces
+                        .iter()
+                        .find(|s| s.items.contains(&noun) && self.has(&s.parent))
+                })
                 .map(|s| s.parent.clone());
-            let present = rests
-                .iter()
-                .find_map(|p| self.plan.furniture.iter().find(|w| covers(lex, &w.noun, p)).map(|w| w.noun.clone()));
+            let present = rests.iter().find_map(|p| {
+                self.plan
+                    .furniture
+                    .iter()
+                    .find(|w| covers(lex, &w.noun, p))
+                    .map(|w| w.noun.clone())
+            });
             let parent = if let Some(p) = present.or(room_rule) {
                 p
             } else if let Some(p) = rests.first().filter(|p| !self.excluded(p)) {
@@ -912,7 +1047,13 @@ impl Builder<'_> {
     fn surface_defaults(&mut self) {
         let cf = clutter_factor(self.density);
         let t = fill_factor(self.density);
-        let parents: Vec<(String, u32)> = self.plan.furniture.iter().chain(&self.plan.wall).map(|w| (w.noun.clone(), w.count)).collect();
+        let parents: Vec<(String, u32)> = self
+            .plan
+            .furniture
+            .iter()
+            .chain(&self.plan.wall)
+            .map(|w| (w.noun.clone(), w.count))
+            .collect();
         let mut done: Vec<String> = Vec::new();
         for (parent, n_parents) in parents {
             if done.contains(&parent) || self.surface.iter().any(|s| s.parent == parent) {
@@ -933,10 +1074,16 @@ impl Builder<'_> {
                     .filter(|w| matches!(&w.arrangement, Arrangement::Around { parent: p } if *p == parent))
                     .map(|w| w.count)
                     .sum();
-                if seats == 0 || matches!(self.density, Some(Density::Minimalist | Density::Sparse)) {
+                if seats == 0 || matches!(self.density, Some(Density::Minimalist | Density::Sparse))
+                {
                     continue;
                 }
-                let items: Vec<String> = rule.items.iter().filter(|i| !self.excluded(i)).cloned().collect();
+                let items: Vec<String> = rule
+                    .items
+                    .iter()
+                    .filter(|i| !self.excluded(i))
+                    .cloned()
+                    .collect();
                 for item in items {
                     self.surface.push(SurfaceItem {
                         parent: parent.clone(),
@@ -961,11 +1108,24 @@ impl Builder<'_> {
             if items.is_empty() || total == 0 {
                 continue;
             }
-            // Shelves of one kind of object (books) take the whole count; mixed surfaces
-            // cycle through the list, most typical first.
+            // The most typical object takes half (a bookshelf is mostly books); the rest
+            // cycle through the list in order.
             let mut counts: Vec<(String, u32)> = Vec::new();
-            for k in 0..total as usize {
-                let noun = items[k % items.len()].clone();
+            let first = if items.len() > 1 && total >= 4 {
+                total.div_ceil(2)
+            } else {
+                0
+            };
+            if first > 0 {
+                counts.push((items[0].clone(), first));
+            }
+            let rest: Vec<&String> = if first > 0 {
+                items[1..].to_vec()
+            } else {
+                items.clone()
+            };
+            for k in 0..(total - first) as usize {
+                let noun = rest[k % rest.len()].clone();
                 match counts.iter_mut().find(|(n, _)| *n == noun) {
                     Some((_, c)) => *c += 1,
                     None => counts.push((noun, 1)),
@@ -1001,11 +1161,20 @@ impl Builder<'_> {
             .chain(&self.plan.ceiling)
             .map(|w| w.noun.clone())
             .collect();
-        let table = self.plan.furniture.iter().find(|w| is_table_like(self.lex, &w.noun)).map(|w| w.noun.clone());
+        let table = self
+            .plan
+            .furniture
+            .iter()
+            .find(|w| is_table_like(self.lex, &w.noun))
+            .map(|w| w.noun.clone());
         let lex = self.lex;
         let fix = |w: &mut Want, floor: bool| {
-            let Some(t) = w.arrangement.target() else { return };
-            if planned.iter().any(|p| p == t) || (t == w.noun && matches!(w.arrangement, Arrangement::Facing { .. })) {
+            let Some(t) = w.arrangement.target() else {
+                return;
+            };
+            if planned.iter().any(|p| p == t)
+                || (t == w.noun && matches!(w.arrangement, Arrangement::Facing { .. }))
+            {
                 return;
             }
             w.arrangement = match (&table, floor && is_seat(lex, &w.noun)) {
@@ -1017,7 +1186,12 @@ impl Builder<'_> {
         for w in &mut self.plan.furniture {
             fix(w, true);
         }
-        for w in self.plan.wall.iter_mut().chain(self.plan.ceiling.iter_mut()) {
+        for w in self
+            .plan
+            .wall
+            .iter_mut()
+            .chain(self.plan.ceiling.iter_mut())
+        {
             fix(w, false);
         }
     }
@@ -1084,37 +1258,68 @@ mod tests {
 
     #[test]
     fn explicit_counts_negations_and_defaults() {
-        let plan = plan_room(&prompt::read("A kitchen with a table, four chairs and 6 mugs, and no cabinet."));
+        let plan = plan_room(&prompt::read(
+            "A kitchen with a table, four chairs and 6 mugs, and no cabinet.",
+        ));
         let chairs = want(&plan, "chair");
         assert_eq!(chairs.count, 4);
-        assert_eq!(chairs.arrangement, Arrangement::Around { parent: "table".into() });
+        assert_eq!(
+            chairs.arrangement,
+            Arrangement::Around {
+                parent: "table".into()
+            }
+        );
         assert!(plan.excluded.contains(&"cabinet".to_string()));
         // "no cabinet" also drops the kitchen's default kitchen cabinets.
         assert!(!plan.furniture.iter().any(|w| w.noun.contains("cabinet")));
         let mut req = plan.requested();
         req.sort();
-        assert_eq!(req, vec![("chair".into(), 4), ("mug".into(), 6), ("table".into(), 1)]);
+        assert_eq!(
+            req,
+            vec![("chair".into(), 4), ("mug".into(), 6), ("table".into(), 1)]
+        );
         // The explicit table covers the default dining table: no second table.
         assert!(!plan.furniture.iter().any(|w| w.noun == "dining table"));
         // Kitchen defaults fill the rest.
-        assert!(plan.furniture.iter().any(|w| w.noun == "refrigerator" && !w.explicit));
+        assert!(
+            plan.furniture
+                .iter()
+                .any(|w| w.noun == "refrigerator" && !w.explicit)
+        );
     }
 
     #[test]
     fn defaults_fill_a_bare_room_and_density_scales() {
         let normal = plan_room(&prompt::read("a library"));
-        assert!(normal.furniture.iter().any(|w| w.noun == "bookshelf" && !w.explicit));
+        assert!(
+            normal
+                .furniture
+                .iter()
+                .any(|w| w.noun == "bookshelf" && !w.explicit)
+        );
         assert!(normal.requested().is_empty());
         let books = |p: &RoomPlan| p.count_of("book");
         let sparse = plan_room(&prompt::read("a minimalist library"));
         let full = plan_room(&prompt::read("a cluttered library"));
-        assert!(books(&sparse) < books(&normal), "{} {}", books(&sparse), books(&normal));
-        assert!(books(&full) > books(&normal), "{} {}", books(&full), books(&normal));
+        assert!(
+            books(&sparse) < books(&normal),
+            "{} {}",
+            books(&sparse),
+            books(&normal)
+        );
+        assert!(
+            books(&full) > books(&normal),
+            "{} {}",
+            books(&full),
+            books(&normal)
+        );
     }
 
     #[test]
     fn place_settings_imply_seats_and_items() {
-        let plan = plan_room(&prompt::read("A dining room with a table set for 4 people."));
+        let plan = plan_room(&prompt::read(
+            "A dining room with a table set for 4 people.",
+        ));
         assert_eq!(want(&plan, "chair").count, 4);
         let g = plan.surfaces.iter().find(|s| s.place_settings).unwrap();
         assert_eq!(g.parent, "table");
@@ -1123,10 +1328,16 @@ mod tests {
 
     #[test]
     fn attributes_and_unknown_nouns() {
-        let plan = plan_room(&prompt::read("A Star Wars themed bedroom with a red ceramic mug on a desk and a glowing flux capacitor."));
+        let plan = plan_room(&prompt::read(
+            "A Star Wars themed bedroom with a red ceramic mug on a desk and a glowing flux capacitor.",
+        ));
         assert_eq!(want(&plan, "mug").description, "red ceramic mug");
         assert!(want(&plan, "bed").description.starts_with("Star Wars"));
-        assert!(plan.unknown.contains(&"flux capacitor".to_string()), "{:?}", plan.unknown);
+        assert!(
+            plan.unknown.contains(&"flux capacitor".to_string()),
+            "{:?}",
+            plan.unknown
+        );
         assert!(plan.all_wants().any(|w| w.noun == "flux capacitor"));
     }
 
@@ -1135,7 +1346,11 @@ mod tests {
         let r = prompt::read("A gym with a TV.");
         let plan = plan_room(&r);
         assert!(plan.furniture.iter().any(|w| w.noun == "tv stand"));
-        assert!(plan.surfaces.iter().any(|s| s.parent == "tv stand" && s.items.iter().any(|w| w.noun == "tv")));
+        assert!(
+            plan.surfaces
+                .iter()
+                .any(|s| s.parent == "tv stand" && s.items.iter().any(|w| w.noun == "tv"))
+        );
         assert_eq!(plan, plan_room(&r));
     }
 }
