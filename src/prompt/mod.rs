@@ -16,6 +16,7 @@ mod chunk;
 mod interpret;
 pub mod lexicon;
 pub mod mentions;
+mod phrase;
 pub mod relations;
 pub mod rooms;
 pub mod tokens;
