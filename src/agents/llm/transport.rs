@@ -280,6 +280,15 @@ impl ReplayTransport {
     }
 }
 
+impl ReplayTransport {
+    /// The model named in the first recorded request.
+    pub fn recorded_model(&self) -> Option<String> {
+        self.entries
+            .front()
+            .and_then(|e| e.request["model"].as_str().map(str::to_string))
+    }
+}
+
 impl Transport for ReplayTransport {
     fn complete(&mut self, meta: &CallMeta, request: &Value) -> Result<Value, LlmError> {
         let entry = self
