@@ -94,13 +94,19 @@ pub(crate) fn chunk_sentence(
         }
         let w = t.text.as_str();
         let next = word(tokens, i + 1);
-        let in_list = matches!(out.last().map(|c| &c.item), Some(Item::Comma | Item::And))
+        let in_list = (matches!(out.last().map(|c| &c.item), Some(Item::Comma | Item::And))
             && out
                 .iter()
                 .rev()
                 .skip(1)
                 .find(|c| !matches!(c.item, Item::Comma | Item::And))
-                .is_some_and(|c| matches!(c.item, Item::Np(_)));
+                .is_some_and(|c| matches!(c.item, Item::Np(_))))
+            // After "with", "of", "including", a preposition or "has": an object slot.
+            || matches!(
+                out.last().map(|c| &c.item),
+                Some(Item::With | Item::Of | Item::Including | Item::Prep(_))
+            )
+            || matches!(out.last().map(|c| &c.item), Some(Item::Verb(class, _)) if matches!(class.as_str(), "possess" | "display" | "fill_with"));
         // Fixed phrases first.
         if w == "in" && next == Some("total") {
             push(&mut out, Item::InTotal, 2);

@@ -490,18 +490,6 @@ pub(crate) fn parse_np(
         let mut words: Vec<String> = Vec::new();
         while k < end && words.len() < 3 {
             let Some(x) = at(k) else { break };
-            if lex.is_function_word(x)
-                || lex.landmark(x).is_some()
-                || lex.is_setting_noun(x)
-                || lex.is_non_object(x)
-                || lex.number(&tokens[k]).is_some()
-            {
-                break;
-            }
-            if k > j && lex.is_feature_noun(x) {
-                np.head = Head::Feature;
-                return Some((np, k + 1));
-            }
             if k > j
                 && let Some((n2, e2, p2)) = lex.noun_at(tokens, k)
                 && k + n2 <= end
@@ -542,6 +530,18 @@ pub(crate) fn parse_np(
                     words: ws.join(" "),
                 };
                 return Some((np, k + n2));
+            }
+            if lex.is_function_word(x)
+                || lex.landmark(x).is_some()
+                || lex.is_setting_noun(x)
+                || lex.is_non_object(x)
+                || lex.number(&tokens[k]).is_some()
+            {
+                break;
+            }
+            if k > j && lex.is_feature_noun(x) {
+                np.head = Head::Feature;
+                return Some((np, k + 1));
             }
             words.push(x.to_string());
             k += 1;

@@ -131,7 +131,9 @@ impl Interp<'_> {
                 if self.mentions[a.m].per.is_none() {
                     self.mentions[a.m].per = Some(Per::Each { parent: t });
                     if self.mentions[a.m].count == Count::Several {
-                        self.mentions[a.m].count = Count::Exactly(1);
+                        // "benches on both sides of each table": two per table.
+                        let n = if kind == RelationKind::Flanking { 2 } else { 1 };
+                        self.mentions[a.m].count = Count::Exactly(n);
                     }
                 }
             }
@@ -341,6 +343,12 @@ impl Interp<'_> {
                         break;
                     }
                     match &np.head {
+                        // A proper name the lexicon does not know ("Darth Vader") in a feature.
+                        Head::Object {
+                            entry: None,
+                            head_entry: None,
+                            ..
+                        } if self.tokens[ch.range.start].capitalized() => {}
                         Head::Object { noun, .. } => {
                             if self
                                 .lex

@@ -156,6 +156,8 @@ pub(crate) struct Interp<'a> {
     next_group: u32,
     settings_table: Option<usize>,
     last_one: Option<usize>,
+    /// "Each X has ...": (first mention of the sentence, the other rooms to copy into).
+    each_rooms: Option<(usize, Vec<usize>)>,
 }
 
 fn is_room_placement(kind: RelationKind, target: Target) -> bool {
@@ -188,6 +190,7 @@ impl<'a> Interp<'a> {
             next_group: 0,
             settings_table: None,
             last_one: None,
+            each_rooms: None,
         }
     }
 
@@ -205,6 +208,53 @@ impl<'a> Interp<'a> {
 
     /// Reads one sentence.
     pub fn sentence(&mut self, chunks: &[Chunk]) {
+        self.sentence_chunks(chunks);
+        if let Some((first, rooms)) = self.each_rooms.take() {
+            self.copy_to_rooms(first, &rooms);
+        }
+    }
+
+    /// Copies the mentions from `first` on into each of `rooms` (references among them
+    /// follow the copies).
+    fn copy_to_rooms(&mut self, first: usize, rooms: &[usize]) {
+        let end = self.mentions.len();
+        for &room in rooms {
+            let base = self.mentions.len();
+            for i in first..end {
+                let dead = !self.alive(i);
+                let mut m = self.mentions[i].clone();
+                m.room = room;
+                let map = |t: usize| {
+                    if (first..end).contains(&t) {
+                        base + (t - first)
+                    } else {
+                        t
+                    }
+                };
+                for r in &mut m.relations {
+                    if let Target::Mention(t) = r.target {
+                        r.target = Target::Mention(map(t));
+                    }
+                }
+                m.per = match m.per {
+                    Some(super::mentions::Per::Each { parent }) => {
+                        Some(super::mentions::Per::Each {
+                            parent: map(parent),
+                        })
+                    }
+                    Some(super::mentions::Per::Setting { table }) => {
+                        Some(super::mentions::Per::Setting { table: map(table) })
+                    }
+                    None => None,
+                };
+                self.mentions.push(m);
+                // A merged source leaves a dropped copy, so indices stay aligned.
+                self.absorbed.push(if dead { Some(None) } else { None });
+            }
+        }
+    }
+
+    fn sentence_chunks(&mut self, chunks: &[Chunk]) {
         let mut c = Clause::new();
         let mut k = 0;
         while k < chunks.len() {
@@ -424,6 +474,15 @@ impl<'a> Interp<'a> {
                     sp.push(r);
                 }
             }
+            if self.scope == Scope::House && np.det.as_deref() == Some("each") {
+                // "Each private office has ...": the same contents in every such room.
+                let same: Vec<usize> = (0..self.rooms.len())
+                    .filter(|&i| {
+                        i != self.room && self.rooms[i].room_type == self.rooms[self.room].room_type
+                    })
+                    .collect();
+                self.each_rooms = Some((self.mentions.len(), same));
+            }
             c.subject_is_room = true;
             c.ctx = Ctx::Room;
         } else if c.verb.is_none() && c.subject.is_empty() {
@@ -434,12 +493,6 @@ impl<'a> Interp<'a> {
             c.last_prep_obj = None;
         }
     }
-
-    // ---- relations ----------------------------------------------------------------------
-
-    // ---- verbs --------------------------------------------------------------------------
-
-    // ---- with, each, settings, totals ---------------------------------------------------
 }
 
 fn is_plural_count(c: Count) -> bool {

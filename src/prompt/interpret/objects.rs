@@ -260,7 +260,16 @@ impl Interp<'_> {
         }
         self.apply_ctx(c, &r, np);
         if c.of_once {
+            // "bins of yarn under the table": what follows is about the bins.
             c.of_once = false;
+            if let Ctx::Holder(holders, _) = &c.ctx {
+                c.focus.clone_from(holders);
+                self.pop_ctx(c);
+                c.last_np = vec![r.clone()];
+                c.last_prep_obj = None;
+                c.after_sep = false;
+                return;
+            }
             self.pop_ctx(c);
         }
         if c.zone && matches!(c.ctx, Ctx::Room) && c.verb.is_some() {
