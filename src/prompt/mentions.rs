@@ -37,9 +37,9 @@ impl Count {
     pub fn times(self, k: Count) -> Count {
         match (self, k) {
             (Count::Several, _) | (_, Count::Several) => Count::Several,
-            (Count::Exactly(a), Count::Exactly(b)) => Count::Exactly(a * b),
+            (Count::Exactly(a), Count::Exactly(b)) => Count::Exactly(a.saturating_mul(b)),
             (Count::Exactly(a) | Count::AtLeast(a), Count::Exactly(b) | Count::AtLeast(b)) => {
-                Count::AtLeast(a * b)
+                Count::AtLeast(a.saturating_mul(b))
             }
         }
     }
@@ -200,7 +200,7 @@ pub(crate) fn phrase_count(
     if let Some(n) = number {
         return match quant {
             Some("at_least") => Count::AtLeast(n),
-            Some("more_than" | "more_than_number") => Count::AtLeast(n + 1),
+            Some("more_than" | "more_than_number") => Count::AtLeast(n.saturating_add(1)),
             _ if plus => Count::AtLeast(n),
             _ => Count::Exactly(n),
         };

@@ -442,7 +442,11 @@ impl Interp<'_> {
             let pairs = np.number.unwrap_or(1);
             let tantum =
                 noun.is_some_and(|n| self.lex.plurale_tantum(n.rsplit(' ').next().unwrap_or(n)));
-            let n = if tantum { pairs } else { pairs * 2 };
+            let n = if tantum {
+                pairs
+            } else {
+                pairs.saturating_mul(2)
+            };
             count = match count {
                 Count::AtLeast(_) => Count::AtLeast(n),
                 _ => Count::Exactly(n),
@@ -539,8 +543,8 @@ impl Interp<'_> {
         {
             let n = self.mentions[m].count.minimum();
             self.mentions[m].count = match self.mentions[m].count {
-                Count::AtLeast(x) => Count::AtLeast(x + 1),
-                _ => Count::Exactly(n + 1),
+                Count::AtLeast(x) => Count::AtLeast(x.saturating_add(1)),
+                _ => Count::Exactly(n.saturating_add(1)),
             };
             // What was said about "one X" before was about the first of them.
             for other in &mut self.mentions {

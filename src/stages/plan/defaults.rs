@@ -23,7 +23,7 @@ impl Builder<'_> {
         for (i, t) in tables {
             let per = t.place_settings.unwrap_or(0);
             let (tables_n, _) = self.count(i, 0);
-            let seats = per * tables_n;
+            let seats = per.saturating_mul(tables_n);
             let has_seats = self
                 .plan
                 .furniture
@@ -332,7 +332,7 @@ impl Builder<'_> {
                 continue;
             }
             let per_parent = ((pick(rule.count, t) as f64) * cf).round() as u32;
-            let total = (per_parent * n_parents).min(MAX_COUNT);
+            let total = per_parent.saturating_mul(n_parents).min(MAX_COUNT);
             let items: Vec<&String> = rule.items.iter().filter(|i| !self.excluded(i)).collect();
             if items.is_empty() || total == 0 {
                 continue;

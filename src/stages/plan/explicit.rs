@@ -44,7 +44,7 @@ impl Builder<'_> {
                 let p = self.reading.mentions.get(parent);
                 let (u, a) = unit(m, p);
                 let (n, b) = self.count(parent, depth + 1);
-                (u * n, a || b)
+                (u.saturating_mul(n), a || b)
             }
             Some(Per::Setting { table }) => {
                 let (u, a) = unit(m, None);
@@ -55,7 +55,7 @@ impl Builder<'_> {
                     .and_then(|t| t.place_settings)
                     .unwrap_or(1);
                 let (n, b) = self.count(table, depth + 1);
-                (u * settings * n, a || b)
+                (u.saturating_mul(settings).saturating_mul(n), a || b)
             }
         }
     }
