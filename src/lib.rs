@@ -21,6 +21,7 @@ pub mod agents;
 pub mod assets;
 pub mod formats;
 pub mod geometry;
+pub mod knowledge;
 pub mod layout;
 pub mod physics;
 pub mod pipeline;

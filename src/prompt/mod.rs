@@ -1,63 +1,104 @@
-//! Reading a prompt: which room, how big, which objects with which counts, what is excluded.
+//! Reading a prompt: one room or a house of rooms; per room the objects with counts,
+//! attributes (colours, materials, styles, themes) and spatial relations; what is excluded;
+//! how full the room should look.
 //!
-//! This is the deterministic reader the built-in designer relies on. It matches phrases from
-//! data tables (room-type words, asset categories and aliases, number words), so adding a noun
-//! is a data change.
+//! This is the deterministic reader the built-in designer relies on. Vocabulary is data
+//! (`src/data/lexicon/*.json`, room words from `src/data/knowledge/`), so adding a noun or a
+//! phrase is a data change. The reader does not decide what a room gets beyond what the prompt
+//! says; [`crate::stages::plan`] merges a reading with the room type's knowledge.
+//!
+//! Pipeline: [`tokens`] (words with spans and punctuation) -> `chunk` (noun phrases,
+//! prepositions, verbs) -> [`rooms`] (house structure from the first sentence) -> `interpret`
+//! (clauses: subjects, holders, per-parent counts, references, relations) -> [`Reading`].
+
+pub mod attributes;
+mod chunk;
+mod interpret;
+pub mod lexicon;
+pub mod mentions;
+mod phrase;
+pub mod relations;
+pub mod rooms;
+pub mod tokens;
 
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
 
 use serde::{Deserialize, Serialize};
 
-use crate::assets::procedural;
+pub use attributes::Attributes;
+pub use lexicon::{Lexicon, NounEntry, Support, lexicon};
+pub use mentions::{Count, Group, GroupKind, Mention, Per};
+pub use relations::{Relation, RelationKind, Target};
+pub use rooms::{Density, RoomReading, Scope};
+pub use tokens::tokenize;
 
-/// How many of something the prompt asks for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(tag = "kind", content = "n", rename_all = "snake_case")]
-pub enum Count {
-    /// "exactly five", or a plain number ("two chairs").
-    Exactly(u32),
-    /// "at least ten", "10+".
-    AtLeast(u32),
-    /// A plural without a number ("chairs", "some books", "multiple").
-    Several,
-}
-
-impl Count {
-    /// The smallest number that satisfies the count.
-    pub fn minimum(self) -> u32 {
-        match self {
-            Count::Exactly(n) | Count::AtLeast(n) => n,
-            Count::Several => 2,
-        }
-    }
-}
-
-/// One object the prompt names.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Mention {
-    /// The asset category the noun maps to.
-    pub category: String,
-    /// The words as written (singular form).
-    pub noun: String,
-    /// How many.
-    pub count: Count,
-    /// True for "no TV", "without a rug".
-    pub negated: bool,
-}
+use crate::knowledge::knowledge;
 
 /// What the reader took from a prompt.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Reading {
-    /// Room type key (see `src/data/room_types.json`); `room` when nothing matched.
+    /// Room-type key of the (first) room (see `src/data/knowledge/`); `room` when nothing
+    /// matched.
     pub room_type: String,
     /// Size factor from words such as "small" (0.8) or "large" (1.3).
     pub size_scale: f64,
-    /// Named objects in prompt order.
+    /// Named objects in prompt order, all rooms (see `Mention::room`).
     pub mentions: Vec<Mention>,
+    /// One room or a house.
+    pub scope: Scope,
+    /// The rooms (exactly one for a single-room prompt).
+    pub rooms: Vec<RoomReading>,
+    /// What the house is ("dental office", "boutique hotel"), for houses.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub house_type: Option<String>,
+    /// Styles and themes of the whole prompt.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub styles: Vec<String>,
+    /// Density of the whole prompt.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density: Option<Density>,
 }
 
-/// Room-type prior.
+impl Reading {
+    /// Indices and mentions of one room.
+    pub fn room_mentions(&self, room: usize) -> impl Iterator<Item = (usize, &Mention)> {
+        self.mentions
+            .iter()
+            .enumerate()
+            .filter(move |(_, m)| m.room == room)
+    }
+
+    /// The total count of mention `i`: a per-parent count times the parent's total, a
+    /// per-setting count times the table's settings.
+    pub fn total(&self, i: usize) -> Count {
+        self.total_depth(i, 0)
+    }
+
+    fn total_depth(&self, i: usize, depth: usize) -> Count {
+        let Some(m) = self.mentions.get(i) else {
+            return Count::Several;
+        };
+        if depth > 4 {
+            return m.count;
+        }
+        match m.per {
+            None => m.count,
+            Some(Per::Each { parent }) => m.count.times(self.total_depth(parent, depth + 1)),
+            Some(Per::Setting { table }) => {
+                let Some(t) = self.mentions.get(table) else {
+                    return m.count;
+                };
+                let settings = Count::Exactly(t.place_settings.unwrap_or(1));
+                m.count
+                    .times(settings)
+                    .times(self.total_depth(table, depth + 1))
+            }
+        }
+    }
+}
+
+/// Room-type prior (the layout's view of the knowledge base).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct RoomTypeInfo {
     /// Clear interior size (x, y), metres.
@@ -70,285 +111,278 @@ pub struct RoomTypeInfo {
     pub wall: String,
     /// Words naming the type.
     pub words: Vec<String>,
-    /// Starter objects (category -> count) used when the prompt names none.
+    /// Typical objects (canonical noun -> count) for rooms the prompt leaves empty.
     #[serde(default)]
     pub defaults: BTreeMap<String, u32>,
 }
 
-#[derive(Deserialize)]
-struct RoomTable {
-    room_types: BTreeMap<String, RoomTypeInfo>,
-}
-
-/// The room-type table.
+/// The room-type table, derived from the knowledge base.
 pub fn room_types() -> &'static BTreeMap<String, RoomTypeInfo> {
     static TABLE: OnceLock<BTreeMap<String, RoomTypeInfo>> = OnceLock::new();
     TABLE.get_or_init(|| {
-        serde_json::from_str::<RoomTable>(include_str!("../data/room_types.json"))
-            .map(|t| t.room_types)
-            .unwrap_or_default()
+        knowledge()
+            .rooms()
+            .iter()
+            .map(|(k, r)| {
+                let mut defaults = BTreeMap::new();
+                for item in r.furniture.iter().chain(&r.wall_items).chain(&r.ceiling) {
+                    if item.count[0] > 0 {
+                        defaults.insert(item.noun.clone(), item.count[0]);
+                    }
+                }
+                let info = RoomTypeInfo {
+                    size: r.size,
+                    wall_height: r.wall_height,
+                    floor: r.floor.clone(),
+                    wall: r.wall.clone(),
+                    words: r.words.clone(),
+                    defaults,
+                };
+                (k.clone(), info)
+            })
+            .collect()
     })
 }
 
-/// Lowercase word tokens; anything but letters, digits and inner hyphens separates words
-/// ("three-level" stays one word, so its number is not read as a count).
-pub fn tokenize(text: &str) -> Vec<String> {
-    text.to_lowercase()
-        .split(|c: char| !(c.is_alphanumeric() || c == '-'))
-        .map(|w| w.trim_matches('-'))
-        .filter(|w| !w.is_empty())
-        .map(str::to_string)
-        .collect()
-}
-
-/// Singular form of an English noun (enough for furniture and household words).
+/// Singular form of an English noun.
 pub fn singular(word: &str) -> String {
-    const WHOLE: [(&str, &str); 6] = [
-        ("people", "person"),
-        ("children", "child"),
-        ("mice", "mouse"),
-        ("feet", "foot"),
-        ("teeth", "tooth"),
-        ("geese", "goose"),
-    ];
-    const SUFFIX: [(&str, &str); 12] = [
-        ("shelves", "shelf"),
-        ("knives", "knife"),
-        ("leaves", "leaf"),
-        ("loaves", "loaf"),
-        ("ches", "ch"),
-        ("shes", "sh"),
-        ("sses", "ss"),
-        ("xes", "x"),
-        ("toes", "to"),
-        ("oes", "o"),
-        ("ies", "y"),
-        ("zes", "z"),
-    ];
-    if let Some((_, s)) = WHOLE.iter().find(|(p, _)| *p == word) {
-        return s.to_string();
-    }
-    for (plural, single) in SUFFIX {
-        if let Some(stem) = word.strip_suffix(plural)
-            && (stem.len() > 1 || plural.len() >= 6)
-        {
-            return format!("{stem}{single}");
-        }
-    }
-    if word.ends_with("ss") || word.ends_with("us") || word.ends_with("is") || word.len() <= 3 {
-        return word.to_string();
-    }
-    word.strip_suffix('s').unwrap_or(word).to_string()
-}
-
-fn number_word(w: &str) -> Option<u32> {
-    const WORDS: [&str; 21] = [
-        "zero",
-        "one",
-        "two",
-        "three",
-        "four",
-        "five",
-        "six",
-        "seven",
-        "eight",
-        "nine",
-        "ten",
-        "eleven",
-        "twelve",
-        "thirteen",
-        "fourteen",
-        "fifteen",
-        "sixteen",
-        "seventeen",
-        "eighteen",
-        "nineteen",
-        "twenty",
-    ];
-    if let Some(i) = WORDS.iter().position(|x| *x == w) {
-        return Some(i as u32);
-    }
-    match w {
-        "thirty" => Some(30),
-        "forty" => Some(40),
-        "fifty" => Some(50),
-        "a" | "an" | "single" => Some(1),
-        "pair" | "couple" => Some(2),
-        "dozen" => Some(12),
-        _ => w.parse::<u32>().ok().filter(|n| *n <= 1000),
-    }
-}
-
-/// Reads the count written just before token `at` (the first word of a noun phrase), skipping
-/// up to three adjectives.
-fn count_before(tokens: &[String], at: usize, plural: bool) -> Count {
-    let lo = at.saturating_sub(4);
-    for i in (lo..at).rev() {
-        let w = tokens[i].as_str();
-        if let Some(n) = number_word(w) {
-            let prev = if i >= 1 { tokens[i - 1].as_str() } else { "" };
-            let prev2 = if i >= 2 { tokens[i - 2].as_str() } else { "" };
-            if (prev2 == "at" && prev == "least") || prev == "minimum" {
-                return Count::AtLeast(n);
-            }
-            if n == 1 && plural {
-                // "a pair of", "a set of" handled by caller; "a few chairs" is several.
-                return Count::Several;
-            }
-            return Count::Exactly(n);
-        }
-        if matches!(w, "some" | "several" | "multiple" | "many" | "few") {
-            return Count::Several;
-        }
-        if matches!(w, "and" | "with" | "of" | "on" | "in" | "the" | "each") {
-            break;
-        }
-    }
-    if plural {
-        Count::Several
-    } else {
-        Count::Exactly(1)
-    }
-}
-
-fn negated_before(tokens: &[String], at: usize) -> bool {
-    let lo = at.saturating_sub(3);
-    tokens[lo..at]
-        .iter()
-        .any(|w| matches!(w.as_str(), "no" | "without" | "not" | "nor"))
+    lexicon().singular(word)
 }
 
 /// Reads a prompt.
 pub fn read(prompt: &str) -> Reading {
-    let tokens = tokenize(prompt);
-    let joined = format!(" {} ", tokens.join(" "));
-
-    // Room type: the earliest-mentioned type word wins; longer words first at equal position.
-    let mut room_type = "room".to_string();
-    let mut best: Option<(usize, usize)> = None;
-    for (key, info) in room_types() {
-        for word in &info.words {
-            let needle = format!(" {word} ");
-            if let Some(pos) = joined.find(&needle) {
-                let cand = (pos, usize::MAX - word.len());
-                if best.is_none_or(|b| cand < b) {
-                    best = Some(cand);
-                    room_type = key.clone();
-                }
+    let lex = lexicon();
+    let kb = knowledge();
+    let toks = tokens::lex(prompt);
+    let chunks: Vec<Vec<chunk::Chunk>> = tokens::sentences(&toks)
+        .into_iter()
+        .map(|r| chunk::chunk_sentence(lex, kb, &toks, r))
+        .collect();
+    let first: &[chunk::Chunk] = chunks.first().map_or(&[], Vec::as_slice);
+    let st = rooms::structure(lex, &toks, first);
+    let mut it = interpret::Interp::new(lex, &toks, st.rooms.clone(), st.scope);
+    for (i, ch) in chunks.iter().enumerate() {
+        if st.scope == Scope::House && i == 0 {
+            // The room list; its phrases are rooms, not objects.
+            continue;
+        }
+        it.sentence(ch);
+    }
+    let (mentions, mut rooms) = finish(lex, &toks, prompt, it);
+    // Density: strong words anywhere apply to every room; the room phrase's own words too.
+    let density = toks
+        .iter()
+        .filter(|t| t.is_word())
+        .find_map(|t| lex.density(&t.text).and_then(Density::from_class))
+        .or(st.density);
+    for r in &mut rooms {
+        if r.density.is_none() {
+            r.density = density;
+        }
+        for s in &st.styles {
+            if st.scope == Scope::House && !r.styles.contains(s) {
+                r.styles.push(s.clone());
             }
         }
     }
-
-    let size_scale = if tokens
-        .iter()
-        .any(|w| matches!(w.as_str(), "tiny" | "compact" | "small" | "cozy" | "little"))
-    {
-        0.8
-    } else if tokens
-        .iter()
-        .any(|w| matches!(w.as_str(), "large" | "spacious" | "big" | "huge" | "grand"))
-    {
-        1.3
-    } else {
-        1.0
+    let room_type = rooms
+        .first()
+        .map_or_else(|| "room".to_string(), |r| r.room_type.clone());
+    let size_scale = match st.scope {
+        Scope::Room => rooms.first().map_or(st.size_scale, |r| r.size_scale),
+        Scope::House => st.size_scale,
     };
-
-    // Objects: longest phrase match (up to three words) at each position.
-    let mut mentions: Vec<Mention> = Vec::new();
-    let mut i = 0;
-    while i < tokens.len() {
-        let mut matched = None;
-        for len in (1..=3).rev() {
-            if i + len > tokens.len() {
-                continue;
-            }
-            let words = &tokens[i..i + len];
-            let last = words[len - 1].as_str();
-            let sing = singular(last);
-            let mut phrase: Vec<&str> = words[..len - 1].iter().map(String::as_str).collect();
-            phrase.push(&sing);
-            let phrase = phrase.join(" ");
-            if let Some(cat) = procedural::resolve_category(&phrase) {
-                matched = Some((len, cat.to_string(), phrase, sing != last));
-                break;
-            }
-        }
-        match matched {
-            Some((len, category, noun, plural)) => {
-                // "room" words are handled above; skip "shelf" inside "shelf unit" etc. by the
-                // longest-match rule.
-                let count = count_before(&tokens, i, plural);
-                let negated = negated_before(&tokens, i);
-                mentions.push(Mention {
-                    category,
-                    noun,
-                    count,
-                    negated,
-                });
-                i += len;
-            }
-            None => i += 1,
-        }
-    }
     Reading {
         room_type,
         size_scale,
         mentions,
+        scope: st.scope,
+        rooms,
+        house_type: st.house_type,
+        styles: st.styles,
+        density,
     }
+}
+
+/// Support overrides, generic covers, merged mentions dropped, room texts.
+fn finish(
+    lex: &Lexicon,
+    toks: &[tokens::Token],
+    prompt: &str,
+    it: interpret::Interp<'_>,
+) -> (Vec<Mention>, Vec<RoomReading>) {
+    let interpret::Interp {
+        mut mentions,
+        absorbed,
+        mut rooms,
+        spans,
+        ..
+    } = it;
+    // Index remapping: absorbed mentions point at their replacement.
+    let n = mentions.len();
+    let mut new_index: Vec<Option<usize>> = vec![None; n];
+    let mut next = 0;
+    for (i, slot) in new_index.iter_mut().enumerate() {
+        if absorbed.get(i).is_some_and(Option::is_none) {
+            *slot = Some(next);
+            next += 1;
+        }
+    }
+    let resolve = |mut i: usize| -> Option<usize> {
+        for _ in 0..8 {
+            if let Some(j) = new_index.get(i).copied().flatten() {
+                return Some(j);
+            }
+            match absorbed.get(i).copied().flatten().flatten() {
+                Some(r) => i = r,
+                None => return None,
+            }
+        }
+        None
+    };
+    for m in &mut mentions {
+        m.relations.retain_mut(|r| {
+            if let Target::Mention(t) = r.target {
+                match resolve(t) {
+                    Some(j) => r.target = Target::Mention(j),
+                    None => return false,
+                }
+            }
+            if let Some(Target::Mention(t)) = r.second {
+                r.second = resolve(t).map(Target::Mention);
+            }
+            true
+        });
+        m.per = match m.per {
+            Some(Per::Each { parent }) => resolve(parent).map(|parent| Per::Each { parent }),
+            Some(Per::Setting { table }) => resolve(table).map(|table| Per::Setting { table }),
+            None => None,
+        };
+    }
+    let mut out: Vec<Mention> = mentions
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| new_index[*i].is_some())
+        .map(|(_, m)| m)
+        .collect();
+    // Self-references created by merging.
+    for (i, m) in out.iter_mut().enumerate() {
+        m.relations.retain(|r| r.target != Target::Mention(i));
+        if matches!(m.per, Some(Per::Each { parent }) if parent == i) {
+            m.per = None;
+        }
+    }
+    // Support from relations: on the wall, from the ceiling, on another object, or placed on
+    // the floor of the room.
+    for m in &mut out {
+        let explicit = |k: RelationKind, t: Target| {
+            m.relations
+                .iter()
+                .any(|r| r.kind == k && r.target == t && !r.implied)
+        };
+        let mounted = m
+            .attributes
+            .adjectives
+            .iter()
+            .any(|a| a == "wall-mounted" || a == "mounted");
+        if m.relations.iter().any(|r| r.kind == RelationKind::Hanging) {
+            m.support = Support::Ceiling;
+        } else if explicit(RelationKind::On, Target::Wall) || mounted {
+            m.support = Support::Wall;
+        } else if m
+            .relations
+            .iter()
+            .any(|r| r.is_support() && r.kind != RelationKind::With)
+            && m.support == Support::Floor
+        {
+            let parent_small = true;
+            if parent_small
+                && lex
+                    .lookup(&m.category)
+                    .is_none_or(|e| !e.holds || e.support != Support::Floor)
+            {
+                m.support = Support::Surface;
+            }
+        } else if m.support == Support::Surface
+            && !m
+                .relations
+                .iter()
+                .any(|r| r.is_support() || r.target == Target::Floor)
+            && m.relations.iter().any(|r| {
+                !r.implied
+                    && matches!(
+                        r.target,
+                        Target::Wall
+                            | Target::Corner
+                            | Target::Room
+                            | Target::Window
+                            | Target::Entrance
+                    )
+            })
+        {
+            // "a printer sits in the corner": on the floor.
+            m.support = Support::Floor;
+        }
+    }
+    // Generic mentions count their specific kinds in the same place ("at least 6 fruits" in
+    // the bowl with the apples and oranges).
+    let parents: Vec<Option<usize>> = out.iter().map(Mention::parent).collect();
+    for g in 0..out.len() {
+        if !out[g].generic {
+            continue;
+        }
+        let cat = out[g].category.clone();
+        let covers: Vec<usize> = (0..out.len())
+            .filter(|&i| {
+                i != g
+                    && out[i].room == out[g].room
+                    && parents[i] == parents[g]
+                    && parents[g].is_some()
+            })
+            .filter(|&i| {
+                let mut k = lex.lookup(&out[i].category).and_then(|e| e.kind_of.clone());
+                for _ in 0..3 {
+                    match k {
+                        Some(ref x) if *x == cat => return true,
+                        Some(ref x) => k = lex.lookup(x).and_then(|e| e.kind_of.clone()),
+                        None => return false,
+                    }
+                }
+                false
+            })
+            .collect();
+        out[g].covers = covers;
+    }
+    // Room texts from their token ranges.
+    for (i, r) in rooms.iter_mut().enumerate() {
+        let mut ranges: Vec<std::ops::Range<usize>> = spans.get(i).cloned().unwrap_or_default();
+        ranges.sort_by_key(|r| r.start);
+        let mut parts: Vec<(usize, usize)> = Vec::new();
+        for rg in ranges {
+            if rg.is_empty() || rg.end > toks.len() {
+                continue;
+            }
+            let (a, b) = (toks[rg.start].start, toks[rg.end - 1].end);
+            match parts.last_mut() {
+                Some(last) if a <= last.1 + 2 => last.1 = last.1.max(b),
+                _ => parts.push((a, b)),
+            }
+        }
+        r.text = parts
+            .iter()
+            .filter_map(|&(a, b)| prompt.get(a..b))
+            .collect::<Vec<_>>()
+            .join(" ... ");
+        if rooms_len_is_one(&spans) {
+            r.text = prompt.trim().to_string();
+        }
+    }
+    (out, rooms)
+}
+
+fn rooms_len_is_one<T>(spans: &[T]) -> bool {
+    spans.len() == 1
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn counts_and_room_type() {
-        let r = read("A small kitchen with a table, four chairs and at least 10 mugs.");
-        assert_eq!(r.room_type, "kitchen");
-        assert_eq!(r.size_scale, 0.8);
-        let by_cat: BTreeMap<_, _> = r
-            .mentions
-            .iter()
-            .map(|m| (m.category.as_str(), m.count))
-            .collect();
-        assert_eq!(by_cat["table"], Count::Exactly(1));
-        assert_eq!(by_cat["chair"], Count::Exactly(4));
-        assert_eq!(by_cat["mug"], Count::AtLeast(10));
-    }
-
-    #[test]
-    fn plurals_aliases_and_negation() {
-        let r = read("An office with bookshelves, some plates, and no cabinet.");
-        assert_eq!(r.room_type, "office");
-        let shelf = r
-            .mentions
-            .iter()
-            .find(|m| m.category == "bookshelf")
-            .unwrap();
-        assert_eq!(shelf.count, Count::Several);
-        let cab = r.mentions.iter().find(|m| m.category == "cabinet").unwrap();
-        assert!(cab.negated);
-        let plate = r.mentions.iter().find(|m| m.category == "plate").unwrap();
-        assert_eq!(plate.count, Count::Several);
-    }
-
-    #[test]
-    fn unknown_room_is_plain_room() {
-        let r = read("Something with a chair.");
-        assert_eq!(r.room_type, "room");
-        assert_eq!(r.mentions.len(), 1);
-    }
-
-    #[test]
-    fn singulars() {
-        assert_eq!(singular("shelves"), "shelf");
-        assert_eq!(singular("libraries"), "library");
-        assert_eq!(singular("glass"), "glass");
-        assert_eq!(singular("chairs"), "chair");
-        assert_eq!(singular("bus"), "bus");
-        assert_eq!(singular("bookshelves"), "bookshelf");
-        assert_eq!(singular("benches"), "bench");
-        assert_eq!(singular("potatoes"), "potato");
-        assert_eq!(singular("boxes"), "box");
-    }
-}
+mod tests;

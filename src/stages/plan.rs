@@ -1,13 +1,28 @@
 //! What the built-in designers build: a room plan (furniture with arrangements, wall and
-//! ceiling items, what goes on which surface), derived from the prompt reading and the room
-//! type's defaults. Explicit prompt content wins over defaults; negations are obeyed.
+//! ceiling items, what goes on which surface), merged from the prompt reading of one room and
+//! its room type's knowledge.
+//!
+//! Rules: explicit prompt content always wins over defaults (a requested noun, or a broader or
+//! narrower one, is never duplicated by a default); negations are obeyed (a default whose noun
+//! or class was excluded is dropped); density words scale the defaults (minimalist: only what a
+//! room of the type needs; cluttered: the high end of every range and more small objects);
+//! attributes travel in `Want::description`; nouns the lexicon does not know are still planned
+//! and also listed in `unknown`. The same reading always gives the same plan.
+//!
+//! This module plans; it does not place (the stage designers do) or build assets (the asset
+//! router does).
+
+use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use crate::assets::procedural::{self, SupportClass};
-use crate::prompt::{self, Count, Reading};
+mod defaults;
+mod explicit;
 
-/// How a furniture piece is arranged.
+use crate::knowledge::{self, Knowledge, Place, RoomType};
+use crate::prompt::{self, Density, Lexicon, Reading, Support};
+
+/// How a piece is arranged.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Arrangement {
@@ -22,7 +37,7 @@ pub enum Arrangement {
         /// The parent's noun.
         parent: String,
     },
-    /// Facing another piece.
+    /// Facing another piece (the piece's own noun: facing each other).
     Facing {
         /// The target's noun.
         target: String,
@@ -47,16 +62,107 @@ pub enum Arrangement {
         /// The target's noun.
         target: String,
     },
+    /// Next to another piece.
+    Beside {
+        /// The target's noun.
+        target: String,
+    },
+    /// One on each side of another piece (nightstands by the bed).
+    Flanking {
+        /// The target's noun.
+        target: String,
+    },
+    /// In front of another piece (coffee table before the sofa).
+    InFront {
+        /// The target's noun.
+        target: String,
+    },
+    /// Behind another piece (shelves behind the bar counter).
+    Behind {
+        /// The target's noun.
+        target: String,
+    },
+    /// Under another piece (rug under the dining table).
+    Under {
+        /// The target's noun.
+        target: String,
+    },
+    /// Between pieces (coffee table between two sofas).
+    Between {
+        /// The targets' nouns (one noun when the target is a group, "between them").
+        targets: Vec<String>,
+    },
+    /// Across the room from something; `entrance` means the wall facing the door.
+    AcrossFrom {
+        /// The target's noun, or `entrance`.
+        target: String,
+    },
+    /// At the front of the room (teacher's desk, board).
+    FrontOfRoom,
+    /// Several in a row along one wall.
+    RowAlongWall,
+    /// Several in a grid over the floor (classroom desks).
+    Grid,
+    /// Small objects: on top of another small object (cup on saucer, cheese on plate).
+    On {
+        /// The supporting object's noun.
+        parent: String,
+    },
+}
+
+impl Arrangement {
+    /// The other object this arrangement refers to, if any.
+    pub fn target(&self) -> Option<&str> {
+        match self {
+            Arrangement::Around { parent }
+            | Arrangement::Inside { parent }
+            | Arrangement::On { parent } => Some(parent),
+            Arrangement::Facing { target }
+            | Arrangement::Above { target }
+            | Arrangement::Beside { target }
+            | Arrangement::Flanking { target }
+            | Arrangement::InFront { target }
+            | Arrangement::Behind { target }
+            | Arrangement::Under { target } => Some(target),
+            Arrangement::AcrossFrom { target } if target != "entrance" => Some(target),
+            Arrangement::Between { targets } => targets.first().map(String::as_str),
+            _ => None,
+        }
+    }
+
+    fn with_target(&self, f: impl Fn(&str) -> String) -> Arrangement {
+        let mut a = self.clone();
+        match &mut a {
+            Arrangement::Around { parent }
+            | Arrangement::Inside { parent }
+            | Arrangement::On { parent } => *parent = f(parent),
+            Arrangement::Facing { target }
+            | Arrangement::Above { target }
+            | Arrangement::Beside { target }
+            | Arrangement::Flanking { target }
+            | Arrangement::InFront { target }
+            | Arrangement::Behind { target }
+            | Arrangement::Under { target } => *target = f(target),
+            Arrangement::AcrossFrom { target } if target != "entrance" => *target = f(target),
+            Arrangement::Between { targets } => {
+                for t in targets.iter_mut() {
+                    *t = f(t);
+                }
+            }
+            _ => {}
+        }
+        a
+    }
 }
 
 /// One wanted object (or group of identical objects).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Want {
-    /// The noun (also the asset description unless `description` says more).
+    /// The canonical noun (the asset router maps it to a generator).
     pub noun: String,
     /// Free-text description for the asset router (attributes included).
     pub description: String,
-    /// How many.
+    /// How many (a total over all parents for small objects).
     pub count: u32,
     /// True when the prompt asked for it (coverage counts these).
     pub explicit: bool,
@@ -64,12 +170,19 @@ pub struct Want {
     pub at_least: bool,
     /// Arrangement (furniture) or placement hint.
     pub arrangement: Arrangement,
+    /// Mounting height of wall items, metres (from the knowledge base).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub height_m: Option<f64>,
+    /// Which member of a plural parent holds these ("the other bin": 1), when the prompt says.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parent_instance: Option<u32>,
 }
 
 /// Small objects for one kind of supporting furniture.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SurfaceWant {
-    /// Noun of the supporting furniture (`table`, `shelf`, ...).
+    /// Noun of the supporting furniture (`table`, `shelf`, ...), `floor` for objects on the
+    /// floor, `any` when nothing in particular.
     pub parent: String,
     /// The objects (counts are totals over all parents of that noun).
     pub items: Vec<Want>,
@@ -90,144 +203,233 @@ pub struct RoomPlan {
     pub surfaces: Vec<SurfaceWant>,
     /// Nouns the prompt excluded.
     pub excluded: Vec<String>,
-    /// Nouns the prompt named that no generator knows (reported, not silent).
+    /// Nouns the prompt named that no lexicon entry knows (planned anyway, reported).
     pub unknown: Vec<String>,
+    /// Room-type key the plan was made for.
+    #[serde(default)]
+    pub room_type: String,
+    /// Styles and themes of the whole room.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub styles: Vec<String>,
+    /// Density the defaults were scaled for.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density: Option<Density>,
 }
 
 impl RoomPlan {
     /// Explicitly requested nouns with their minimum counts (for coverage).
     pub fn requested(&self) -> Vec<(String, u32)> {
         let mut out: Vec<(String, u32)> = Vec::new();
-        let all = self
-            .furniture
-            .iter()
-            .chain(&self.wall)
-            .chain(&self.ceiling)
-            .chain(self.surfaces.iter().flat_map(|s| &s.items));
-        for w in all.filter(|w| w.explicit) {
+        for w in self.all_wants().filter(|w| w.explicit) {
             match out.iter_mut().find(|(n, _)| *n == w.noun) {
-                Some((_, c)) => *c = (*c).max(w.count),
+                Some((_, c)) => *c += w.count,
                 None => out.push((w.noun.clone(), w.count)),
             }
         }
         out
     }
-}
 
-fn count_of(c: Count, noun: &str) -> (u32, bool) {
-    match c {
-        Count::Exactly(n) => (n, false),
-        Count::AtLeast(n) => (n, true),
-        Count::Several => (if noun == "book" { 8 } else { 3 }, false),
+    /// Every want of the plan (furniture, wall, ceiling, surface items).
+    pub fn all_wants(&self) -> impl Iterator<Item = &Want> {
+        self.furniture
+            .iter()
+            .chain(&self.wall)
+            .chain(&self.ceiling)
+            .chain(self.surfaces.iter().flat_map(|s| &s.items))
+    }
+
+    /// Total count of a noun over the whole plan.
+    pub fn count_of(&self, noun: &str) -> u32 {
+        self.all_wants()
+            .filter(|w| w.noun == noun)
+            .map(|w| w.count)
+            .sum()
     }
 }
 
-/// Default arrangement of a furniture noun.
-fn arrangement_for(noun: &str, has_table: bool) -> Arrangement {
-    match noun {
-        "table" => Arrangement::Center,
-        "chair" if has_table => Arrangement::Around {
-            parent: "table".into(),
-        },
-        _ => Arrangement::AgainstWall,
+/// Upper bound on one want's count (a room holds only so much).
+const MAX_COUNT: u32 = 120;
+
+/// How far into a [min, max] range the defaults go, per density.
+fn fill_factor(d: Option<Density>) -> f64 {
+    match d {
+        Some(Density::Minimalist | Density::Sparse) => 0.0,
+        Some(Density::Pristine) | None => 0.5,
+        Some(Density::LivedIn) => 0.75,
+        Some(Density::Cluttered | Density::Packed) => 1.0,
     }
 }
 
-/// Builds the plan of a room from the prompt reading and the room type's defaults.
+/// Multiplier on small-object counts per density.
+fn clutter_factor(d: Option<Density>) -> f64 {
+    match d {
+        Some(Density::Minimalist | Density::Sparse) => 0.5,
+        Some(Density::Pristine) => 0.75,
+        None => 1.0,
+        Some(Density::LivedIn) => 1.25,
+        Some(Density::Cluttered) => 1.6,
+        Some(Density::Packed) => 2.0,
+    }
+}
+
+fn pick(range: [u32; 2], t: f64) -> u32 {
+    let (lo, hi) = (range[0].min(range[1]), range[0].max(range[1]));
+    lo + ((hi - lo) as f64 * t).round() as u32
+}
+
+/// True when `a` names `b` or a kind of `b`, or the other way round (explicit "table" covers
+/// a default "dining table"; explicit "office chair" covers a default "chair").
+fn covers(lex: &Lexicon, a: &str, b: &str) -> bool {
+    if a == b {
+        return true;
+    }
+    let is_kind = |x: &str, of: &str| {
+        let mut k = lex.lookup(x).and_then(|e| e.kind_of.clone());
+        for _ in 0..3 {
+            match k {
+                Some(ref y) if y == of => return true,
+                Some(ref y) => k = lex.lookup(y).and_then(|e| e.kind_of.clone()),
+                None => return false,
+            }
+        }
+        false
+    };
+    is_kind(a, b) || is_kind(b, a)
+}
+
+fn is_seat(lex: &Lexicon, noun: &str) -> bool {
+    covers(lex, noun, "chair")
+        || covers(lex, noun, "stool")
+        || covers(lex, noun, "seating")
+        || noun.ends_with("chair")
+        || noun.ends_with("stool")
+        || noun.ends_with("bench")
+}
+
+fn is_table_like(lex: &Lexicon, noun: &str) -> bool {
+    lex.lookup(noun)
+        .is_some_and(|e| e.holds && e.support == Support::Floor)
+        && ["table", "desk", "counter", "workbench"]
+            .iter()
+            .any(|k| covers(lex, noun, k) || noun.ends_with(k))
+}
+
+fn place_to_arrangement(p: &Place) -> Arrangement {
+    match p {
+        Place::AgainstWall => Arrangement::AgainstWall,
+        Place::Corner => Arrangement::Corner,
+        Place::Center => Arrangement::Center,
+        Place::Around(n) => Arrangement::Around { parent: n.clone() },
+        Place::Facing(n) => Arrangement::Facing { target: n.clone() },
+        Place::InFront(n) => Arrangement::InFront { target: n.clone() },
+        Place::Behind(n) => Arrangement::Behind { target: n.clone() },
+        Place::Beside(n) => Arrangement::Beside { target: n.clone() },
+        Place::Flanking(n) => Arrangement::Flanking { target: n.clone() },
+        Place::Under(n) => Arrangement::Under { target: n.clone() },
+        Place::NearWindow => Arrangement::NearWindow,
+        Place::NearEntrance => Arrangement::NearEntrance,
+        Place::AcrossFrom(n) => Arrangement::AcrossFrom { target: n.clone() },
+        Place::FrontOfRoom => Arrangement::FrontOfRoom,
+        Place::RowAlongWall => Arrangement::RowAlongWall,
+        Place::Grid => Arrangement::Grid,
+        Place::Above(n) => Arrangement::Above { target: n.clone() },
+        Place::Spread => Arrangement::Free,
+    }
+}
+
+/// Builds the plan of a single-room reading (the first room of a house reading).
 pub fn plan_room(reading: &Reading) -> RoomPlan {
-    let mut plan = RoomPlan::default();
-    let mut counts: Vec<(String, u32, bool, bool)> = Vec::new(); // noun, count, at_least, explicit
-    for m in &reading.mentions {
-        if m.negated {
-            if !plan.excluded.contains(&m.category) {
-                plan.excluded.push(m.category.clone());
-            }
-            continue;
-        }
-        let (n, at_least) = count_of(m.count, &m.category);
-        match counts.iter_mut().find(|(c, ..)| *c == m.category) {
-            Some(e) => e.1 = e.1.max(n),
-            None => counts.push((m.category.clone(), n, at_least, true)),
-        }
-    }
-    let has_floor_item = counts
-        .iter()
-        .any(|(c, ..)| procedural::prior(c).is_some_and(|p| p.support == SupportClass::Floor));
-    if !has_floor_item && let Some(info) = prompt::room_types().get(&reading.room_type) {
-        for (noun, n) in &info.defaults {
-            if !counts.iter().any(|(c, ..)| c == noun) {
-                counts.push((noun.clone(), *n, false, false));
-            }
-        }
-    }
-    counts.retain(|(c, n, ..)| *n > 0 && !plan.excluded.contains(c));
-    let has_table = counts.iter().any(|(c, ..)| c == "table");
-    // Anchors first: tables, then the rest of the floor pieces, chairs last.
-    counts.sort_by_key(|(c, ..)| match c.as_str() {
-        "table" => 0,
-        "chair" => 2,
-        _ => 1,
-    });
-    let mut surface_items: Vec<Want> = Vec::new();
-    for (noun, count, at_least, explicit) in counts {
-        let want = |arrangement| Want {
-            noun: noun.clone(),
-            description: noun.clone(),
-            count: count.min(60),
-            explicit,
-            at_least,
-            arrangement,
-        };
-        match procedural::prior(&noun).map(|p| p.support) {
-            Some(SupportClass::Floor) => {
-                plan.furniture.push(want(arrangement_for(&noun, has_table)))
-            }
-            Some(SupportClass::Wall) => plan.wall.push(want(Arrangement::Free)),
-            Some(SupportClass::Ceiling) => plan.ceiling.push(want(Arrangement::Free)),
-            Some(SupportClass::Surface) => surface_items.push(want(Arrangement::Free)),
-            None => plan.unknown.push(noun.clone()),
-        }
-    }
-    // Small objects: tableware on tables as place settings, books on shelves, the rest on any
-    // surface (the designer falls back through every surface).
-    let (tableware, rest): (Vec<Want>, Vec<Want>) = surface_items
-        .into_iter()
-        .partition(|w| matches!(w.noun.as_str(), "plate" | "mug") && has_table);
-    if !tableware.is_empty() {
-        plan.surfaces.push(SurfaceWant {
-            parent: "table".into(),
-            items: tableware,
-            place_settings: true,
-        });
-    }
-    let (books, others): (Vec<Want>, Vec<Want>) = rest.into_iter().partition(|w| w.noun == "book");
-    if !books.is_empty() {
-        plan.surfaces.push(SurfaceWant {
-            parent: "shelf".into(),
-            items: books,
-            place_settings: false,
-        });
-    }
-    if !others.is_empty() {
-        plan.surfaces.push(SurfaceWant {
-            parent: "any".into(),
-            items: others,
-            place_settings: false,
-        });
-    }
-    plan
+    plan_house_room(reading, 0)
+}
+
+/// Builds the plans of every room of a reading, in room order.
+pub fn plan_rooms(reading: &Reading) -> Vec<RoomPlan> {
+    (0..reading.rooms.len().max(1))
+        .map(|i| plan_house_room(reading, i))
+        .collect()
+}
+
+/// Builds the plan of room `room` of a reading: the room's mentions merged with its room
+/// type's defaults.
+pub fn plan_house_room(reading: &Reading, room: usize) -> RoomPlan {
+    let lex = prompt::lexicon();
+    let kb = knowledge::knowledge();
+    let info = reading.rooms.get(room);
+    let room_type = info.map_or(reading.room_type.as_str(), |r| r.room_type.as_str());
+    let rt = kb.room(room_type).or_else(|| kb.room("room"));
+    let density = info.and_then(|r| r.density).or(reading.density);
+    let styles: Vec<String> = info
+        .map(|r| r.styles.clone())
+        .unwrap_or_else(|| reading.styles.clone());
+    let mut b = Builder {
+        lex,
+        kb,
+        reading,
+        room,
+        rt,
+        density,
+        styles,
+        plan: RoomPlan {
+            room_type: room_type.to_string(),
+            density,
+            ..RoomPlan::default()
+        },
+        surface: Vec::new(),
+        floor_of: BTreeMap::new(),
+    };
+    b.plan.styles.clone_from(&b.styles);
+    b.explicit();
+    b.place_settings();
+    b.defaults();
+    b.surface_parents();
+    b.surface_defaults();
+    b.finish()
+}
+
+/// A small object before grouping by parent.
+#[derive(Debug, Clone)]
+struct SurfaceItem {
+    parent: String,
+    want: Want,
+    place_settings: bool,
+}
+
+struct Builder<'a> {
+    lex: &'a Lexicon,
+    kb: &'a Knowledge,
+    reading: &'a Reading,
+    room: usize,
+    rt: Option<&'a RoomType>,
+    density: Option<Density>,
+    styles: Vec<String>,
+    plan: RoomPlan,
+    surface: Vec<SurfaceItem>,
+    /// Default noun -> the explicit noun that covers it (for rule targets).
+    floor_of: BTreeMap<String, String>,
+}
+
+impl Builder<'_> {
+    // ---- explicit content -------------------------------------------------------------
+
+    // ---- implied content ----------------------------------------------------------------
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn want<'a>(plan: &'a RoomPlan, noun: &str) -> &'a Want {
+        plan.all_wants()
+            .find(|w| w.noun == noun)
+            .unwrap_or_else(|| panic!("no {noun} in {plan:#?}"))
+    }
+
     #[test]
     fn explicit_counts_negations_and_defaults() {
         let plan = plan_room(&prompt::read(
             "A kitchen with a table, four chairs and 6 mugs, and no cabinet.",
         ));
-        let chairs = plan.furniture.iter().find(|w| w.noun == "chair").unwrap();
+        let chairs = want(&plan, "chair");
         assert_eq!(chairs.count, 4);
         assert_eq!(
             chairs.arrangement,
@@ -236,25 +438,87 @@ mod tests {
             }
         );
         assert!(plan.excluded.contains(&"cabinet".to_string()));
-        assert!(!plan.furniture.iter().any(|w| w.noun == "cabinet"));
-        assert_eq!(plan.surfaces[0].parent, "table");
-        assert!(plan.surfaces[0].place_settings);
+        // "no cabinet" also drops the kitchen's default kitchen cabinets.
+        assert!(!plan.furniture.iter().any(|w| w.noun.contains("cabinet")));
         let mut req = plan.requested();
         req.sort();
         assert_eq!(
             req,
             vec![("chair".into(), 4), ("mug".into(), 6), ("table".into(), 1)]
         );
-    }
-
-    #[test]
-    fn defaults_fill_a_bare_room() {
-        let plan = plan_room(&prompt::read("a library"));
+        // The explicit table covers the default dining table: no second table.
+        assert!(!plan.furniture.iter().any(|w| w.noun == "dining table"));
+        // Kitchen defaults fill the rest.
         assert!(
             plan.furniture
                 .iter()
-                .any(|w| w.noun == "shelf" && !w.explicit)
+                .any(|w| w.noun == "refrigerator" && !w.explicit)
         );
-        assert!(plan.requested().is_empty());
+    }
+
+    #[test]
+    fn defaults_fill_a_bare_room_and_density_scales() {
+        let normal = plan_room(&prompt::read("a library"));
+        assert!(
+            normal
+                .furniture
+                .iter()
+                .any(|w| w.noun == "bookshelf" && !w.explicit)
+        );
+        assert!(normal.requested().is_empty());
+        let books = |p: &RoomPlan| p.count_of("book");
+        let sparse = plan_room(&prompt::read("a minimalist library"));
+        let full = plan_room(&prompt::read("a cluttered library"));
+        assert!(
+            books(&sparse) < books(&normal),
+            "{} {}",
+            books(&sparse),
+            books(&normal)
+        );
+        assert!(
+            books(&full) > books(&normal),
+            "{} {}",
+            books(&full),
+            books(&normal)
+        );
+    }
+
+    #[test]
+    fn place_settings_imply_seats_and_items() {
+        let plan = plan_room(&prompt::read(
+            "A dining room with a table set for 4 people.",
+        ));
+        assert_eq!(want(&plan, "chair").count, 4);
+        let g = plan.surfaces.iter().find(|s| s.place_settings).unwrap();
+        assert_eq!(g.parent, "table");
+        assert!(g.items.iter().any(|w| w.noun == "plate" && w.count == 4));
+    }
+
+    #[test]
+    fn attributes_and_unknown_nouns() {
+        let plan = plan_room(&prompt::read(
+            "A Star Wars themed bedroom with a red ceramic mug on a desk and a glowing flux capacitor.",
+        ));
+        assert_eq!(want(&plan, "mug").description, "red ceramic mug");
+        assert!(want(&plan, "bed").description.starts_with("Star Wars"));
+        assert!(
+            plan.unknown.contains(&"flux capacitor".to_string()),
+            "{:?}",
+            plan.unknown
+        );
+        assert!(plan.all_wants().any(|w| w.noun == "flux capacitor"));
+    }
+
+    #[test]
+    fn tv_brings_its_stand_and_same_reading_same_plan() {
+        let r = prompt::read("A gym with a TV.");
+        let plan = plan_room(&r);
+        assert!(plan.furniture.iter().any(|w| w.noun == "tv stand"));
+        assert!(
+            plan.surfaces
+                .iter()
+                .any(|s| s.parent == "tv stand" && s.items.iter().any(|w| w.noun == "tv"))
+        );
+        assert_eq!(plan, plan_room(&r));
     }
 }

@@ -1,0 +1,344 @@
+//! Shallow parsing: one sentence's tokens become a list of chunks — noun phrases (with
+//! determiner, quantifier, number, ordinal, group word, modifiers and head), prepositions,
+//! verbs, "with", "each", separators. The interpreter turns chunks into mentions.
+//!
+//! Which words start a phrase is decided here; the phrase itself is read by `phrase`.
+
+use std::ops::Range;
+
+use super::lexicon::Lexicon;
+pub(crate) use super::phrase::{Head, Np, Pronoun};
+use super::phrase::{parse_np, pronoun_np, quantifier_fits, word};
+use super::tokens::{Token, TokenKind};
+use crate::knowledge::Knowledge;
+
+/// One chunk of a sentence.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Item {
+    /// A noun phrase.
+    Np(Box<Np>),
+    /// A preposition (lexicon class).
+    Prep(String),
+    /// A verb (lexicon class) and the word.
+    Verb(String, String),
+    /// "with"
+    With,
+    /// "without", "nor"
+    Without,
+    /// "each" standing alone (", each with", "two stools each")
+    Each,
+    /// ","
+    Comma,
+    /// "and", "or", "as well as"
+    And,
+    /// "which", "that", "where"
+    Relative,
+    /// "in total"
+    InTotal,
+    /// "set for" (place settings)
+    SetFor,
+    /// "for" (purpose)
+    For,
+    /// "including", "such as"
+    Including,
+    /// "of" after a noun ("a vase of flowers")
+    Of,
+    /// Anything else.
+    Other(String),
+}
+
+/// A chunk with its token range.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Chunk {
+    /// The chunk.
+    pub item: Item,
+    /// Tokens it covers.
+    pub range: Range<usize>,
+}
+
+/// Chunks the tokens of one sentence.
+pub(crate) fn chunk_sentence(
+    lex: &Lexicon,
+    kb: &Knowledge,
+    tokens: &[Token],
+    range: Range<usize>,
+) -> Vec<Chunk> {
+    let mut out: Vec<Chunk> = Vec::new();
+    let sentence_start = range.start;
+    let end = range.end;
+    let mut i = range.start;
+    while i < end {
+        let t = &tokens[i];
+        let push = |out: &mut Vec<Chunk>, item: Item, n: usize| {
+            out.push(Chunk {
+                item,
+                range: i..i + n,
+            })
+        };
+        match t.kind {
+            TokenKind::Punct(',' | ':') => {
+                push(&mut out, Item::Comma, 1);
+                i += 1;
+                continue;
+            }
+            TokenKind::Punct('&' | '/') => {
+                push(&mut out, Item::And, 1);
+                i += 1;
+                continue;
+            }
+            TokenKind::Punct(_) => {
+                i += 1;
+                continue;
+            }
+            _ => {}
+        }
+        let w = t.text.as_str();
+        let next = word(tokens, i + 1);
+        let in_list = (matches!(out.last().map(|c| &c.item), Some(Item::Comma | Item::And))
+            && out
+                .iter()
+                .rev()
+                .skip(1)
+                .find(|c| !matches!(c.item, Item::Comma | Item::And))
+                .is_some_and(|c| matches!(c.item, Item::Np(_))))
+            // After "with", "of", "including", a preposition or "has": an object slot.
+            || matches!(
+                out.last().map(|c| &c.item),
+                Some(Item::With | Item::Of | Item::Including | Item::Prep(_))
+            )
+            || matches!(out.last().map(|c| &c.item), Some(Item::Verb(class, _)) if matches!(class.as_str(), "possess" | "display" | "fill_with"));
+        // Fixed phrases first.
+        if w == "in" && next == Some("total") {
+            push(&mut out, Item::InTotal, 2);
+            i += 2;
+            continue;
+        }
+        if w == "set" && next == Some("for") {
+            push(&mut out, Item::SetFor, 2);
+            i += 2;
+            continue;
+        }
+        if (w == "each" && next == Some("other")) || (w == "one" && next == Some("another")) {
+            let np = pronoun_np(Pronoun::EachOther);
+            push(&mut out, Item::Np(Box::new(np)), 2);
+            i += 2;
+            continue;
+        }
+        if matches!((w, next), ("as", Some("well"))) && word(tokens, i + 2) == Some("as") {
+            push(&mut out, Item::And, 3);
+            i += 3;
+            continue;
+        }
+        if matches!((w, next), ("along" | "together", Some("with"))) {
+            push(&mut out, Item::And, 2);
+            i += 2;
+            continue;
+        }
+        if w == "such" && next == Some("as") {
+            push(&mut out, Item::Including, 2);
+            i += 2;
+            continue;
+        }
+        match w {
+            "with" => {
+                push(&mut out, Item::With, 1);
+                i += 1;
+                continue;
+            }
+            "without" | "nor" | "lacking" | "excluding" => {
+                push(&mut out, Item::Without, 1);
+                i += 1;
+                continue;
+            }
+            "including" => {
+                push(&mut out, Item::Including, 1);
+                i += 1;
+                continue;
+            }
+            "for" => {
+                push(&mut out, Item::For, 1);
+                i += 1;
+                continue;
+            }
+            "of" => {
+                push(&mut out, Item::Of, 1);
+                i += 1;
+                continue;
+            }
+            "it" | "them" | "they" => {
+                let p = if w == "it" {
+                    Pronoun::It
+                } else {
+                    Pronoun::Them
+                };
+                push(&mut out, Item::Np(Box::new(pronoun_np(p))), 1);
+                i += 1;
+                continue;
+            }
+            _ => {}
+        }
+        if w == "each" {
+            // "each table" is a phrase; ", each with" and "two stools each" are not.
+            if let Some((np, j)) = parse_np(lex, kb, tokens, i, end, sentence_start, in_list)
+                && !matches!(np.head, Head::NonObject)
+            {
+                out.push(Chunk {
+                    item: Item::Np(Box::new(np)),
+                    range: i..j,
+                });
+                i = j;
+                continue;
+            }
+            push(&mut out, Item::Each, 1);
+            i += 1;
+            continue;
+        }
+        // A multi-word noun beats a verb or preposition reading of its first word
+        // ("display case", "set").
+        let noun_len = lex.noun_at(tokens, i).map_or(0, |(n, ..)| n);
+        let room_len = kb.room_type_at(tokens, i).map_or(0, |(n, _)| n);
+        let starts_np = noun_len >= 2
+            || room_len >= 2
+            || lex.determiner(w).is_some()
+            || lex.number(t).is_some()
+            || (lex.quantifier_at(tokens, i).is_some() && quantifier_fits(lex, tokens, i))
+            || matches!(w, "no" | "not");
+        if !starts_np {
+            if let Some((n, class)) = lex.preposition_at(tokens, i) {
+                push(&mut out, Item::Prep(class.to_string()), n);
+                i += n;
+                continue;
+            }
+            if let Some(class) = lex.verb(w)
+                && !(noun_len == 1
+                    && !matches!(out.last().map(|c| &c.item), Some(Item::Np(_)))
+                    && class != "locate")
+            {
+                push(&mut out, Item::Verb(class.to_string(), w.to_string()), 1);
+                i += 1;
+                continue;
+            }
+            if lex.is_relative(w) {
+                push(&mut out, Item::Relative, 1);
+                i += 1;
+                continue;
+            }
+            if lex.is_conjunction(w) {
+                push(&mut out, Item::And, 1);
+                i += 1;
+                continue;
+            }
+        }
+        match parse_np(lex, kb, tokens, i, end, sentence_start, in_list) {
+            Some((np, j)) if j > i => {
+                out.push(Chunk {
+                    item: Item::Np(Box::new(np)),
+                    range: i..j,
+                });
+                i = j;
+            }
+            _ => {
+                if let Some(class) = lex.verb(w) {
+                    push(&mut out, Item::Verb(class.to_string(), w.to_string()), 1);
+                } else if lex.is_negation(w) {
+                    push(&mut out, Item::Without, 1);
+                } else {
+                    push(&mut out, Item::Other(w.to_string()), 1);
+                }
+                i += 1;
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::knowledge::knowledge;
+    use crate::prompt::lexicon::lexicon;
+    use crate::prompt::mentions::GroupKind;
+    use crate::prompt::tokens::{lex, sentences};
+
+    fn chunks(text: &str) -> Vec<Item> {
+        let t = lex(text);
+        let s = sentences(&t);
+        chunk_sentence(lexicon(), knowledge(), &t, s[0].clone())
+            .into_iter()
+            .map(|c| c.item)
+            .collect()
+    }
+
+    fn nps(text: &str) -> Vec<Np> {
+        chunks(text)
+            .into_iter()
+            .filter_map(|i| match i {
+                Item::Np(np) => Some(*np),
+                _ => None,
+            })
+            .collect()
+    }
+
+    fn canon(np: &Np) -> &str {
+        match &np.head {
+            Head::Object { canonical, .. } => canonical,
+            Head::Room { key, .. } => key,
+            _ => "",
+        }
+    }
+
+    #[test]
+    fn commas_scope_numbers() {
+        let n = nps("A kitchen with four chairs, plates and mugs.");
+        assert_eq!(canon(&n[0]), "kitchen");
+        assert_eq!((canon(&n[1]), n[1].number), ("chair", Some(4)));
+        assert_eq!(
+            (canon(&n[2]), n[2].number, n[2].plural),
+            ("plate", None, true)
+        );
+        assert_eq!((canon(&n[3]), n[3].number), ("mug", None));
+    }
+
+    #[test]
+    fn groups_pairs_and_quantifiers() {
+        let n = nps("exactly 5 pairs of shoes and a stack of 8 books and at least 10 cans");
+        assert_eq!(n[0].group, Some(GroupKind::Pair));
+        assert_eq!(
+            (n[0].number, n[0].quant.as_deref()),
+            (Some(5), Some("exactly"))
+        );
+        assert_eq!(
+            (canon(&n[1]), n[1].number, n[1].group),
+            ("book", Some(8), Some(GroupKind::Stack))
+        );
+        assert_eq!(
+            (n[2].number, n[2].quant.as_deref()),
+            (Some(10), Some("at_least"))
+        );
+    }
+
+    #[test]
+    fn open_vocabulary_and_rooms() {
+        let n = nps("a golden velociraptor skeleton near two exam rooms");
+        assert_eq!(canon(&n[0]), "velociraptor skeleton");
+        assert_eq!(n[0].attrs.colors, ["golden"]);
+        assert_eq!((canon(&n[1]), n[1].number), ("exam_room", Some(2)));
+    }
+
+    #[test]
+    fn verbs_prepositions_and_pronouns() {
+        let c = chunks("A dining table with four chairs surrounding it.");
+        assert!(c.contains(&Item::With));
+        assert!(c.contains(&Item::Prep("around".into())));
+        assert!(matches!(c.last(), Some(Item::Np(np)) if np.head == Head::Pronoun(Pronoun::It)));
+        let c = chunks("where one displays pet food bags and the other displays pet toys");
+        assert!(
+            c.iter()
+                .any(|i| matches!(i, Item::Np(np) if np.head == Head::Pronoun(Pronoun::One)))
+        );
+        assert!(
+            c.iter()
+                .any(|i| matches!(i, Item::Np(np) if np.head == Head::Pronoun(Pronoun::Other)))
+        );
+    }
+}

@@ -1,0 +1,500 @@
+//! From chunks to mentions: who is the subject, what a "with", "has", "each" or preposition
+//! attaches to, which phrases name an earlier object ("the table", "it", "the other bin"),
+//! per-parent counts, place settings, groups, negation, and which room a clause is about.
+//!
+//! The rules are small and local (a clause at a time); they are tuned on the dev prompts and
+//! written so that a phrase they do not understand is skipped, never misread as something
+//! else when avoidable.
+
+use std::ops::Range;
+
+mod attach;
+mod objects;
+
+use super::chunk::{Chunk, Head, Item, Np};
+use super::lexicon::Lexicon;
+use super::mentions::{Count, Group, GroupKind, Mention};
+use super::relations::{Relation, RelationKind, Target, landmark_target};
+use super::rooms::{self, RoomReading, Scope};
+use super::tokens::Token;
+
+/// A reference to (a member or part of) a mention.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Ref {
+    m: usize,
+    instance: Option<u32>,
+    part: Option<String>,
+}
+
+impl Ref {
+    fn new(m: usize) -> Ref {
+        Ref {
+            m,
+            instance: None,
+            part: None,
+        }
+    }
+}
+
+/// How new noun phrases relate to what came before.
+#[derive(Debug, Clone, PartialEq)]
+enum Ctx {
+    /// Contents of the room.
+    Room,
+    /// "X has/holds/with ...": contents of X, and how they were introduced.
+    Holder(Vec<Ref>, Intro),
+    /// ", each with/containing ...": per-parent contents.
+    Each(Vec<Ref>),
+    /// "each setting has", "set for 4 with ...": per place setting of a table.
+    Setting(usize),
+    /// "a tea set with ...", "supplies including ...": members replacing a generic mention.
+    Members(usize),
+    /// "X covers Y": Y is what X lies on.
+    Cover(Vec<Ref>),
+    /// "styled like Y", "inspired by Y": Y gives styles.
+    StyleOf(Vec<Ref>),
+}
+
+/// How a holder's contents were introduced.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Intro {
+    /// "X with Y": on X when X carries things, in X when it only contains them.
+    With,
+    /// "X has Y", "X holding Y"; `true` for "contains".
+    Verb(bool),
+    /// "X of Y".
+    Of,
+}
+
+/// A preposition waiting for its object.
+#[derive(Debug, Clone)]
+struct Pending {
+    class: String,
+    attach: Vec<Ref>,
+    zone: bool,
+    each: bool,
+}
+
+/// State of the clause being read.
+#[derive(Debug, Clone)]
+struct Clause {
+    subject: Vec<Ref>,
+    subject_is_room: bool,
+    zone: bool,
+    zone_relations: Vec<Relation>,
+    verb: Option<String>,
+    focus: Vec<Ref>,
+    ctx: Ctx,
+    stack: Vec<Ctx>,
+    pending: Option<Pending>,
+    negate: bool,
+    carry_at_least: bool,
+    last_prep_obj: Option<Ref>,
+    last_np: Vec<Ref>,
+    after_sep: bool,
+    sep_was_comma: bool,
+    and_partner: Option<Ref>,
+    group_open: Option<Group>,
+    fronted: Option<(String, Option<String>, Target, Option<u32>)>,
+    relative: bool,
+    skip_np: bool,
+    skip_next: bool,
+    room_with: bool,
+    rel_scope: bool,
+    pronoun_subject: bool,
+    of_once: bool,
+    list_since_comma: Vec<Ref>,
+}
+
+impl Clause {
+    fn new() -> Clause {
+        Clause {
+            subject: Vec::new(),
+            subject_is_room: false,
+            zone: false,
+            zone_relations: Vec::new(),
+            verb: None,
+            focus: Vec::new(),
+            ctx: Ctx::Room,
+            stack: Vec::new(),
+            pending: None,
+            negate: false,
+            carry_at_least: false,
+            last_prep_obj: None,
+            last_np: Vec::new(),
+            after_sep: false,
+            sep_was_comma: false,
+            and_partner: None,
+            group_open: None,
+            fronted: None,
+            relative: false,
+            skip_np: false,
+            skip_next: false,
+            room_with: false,
+            rel_scope: false,
+            pronoun_subject: false,
+            of_once: false,
+            list_since_comma: Vec::new(),
+        }
+    }
+}
+
+/// The interpreter over a whole prompt.
+pub(crate) struct Interp<'a> {
+    lex: &'a Lexicon,
+    tokens: &'a [Token],
+    /// Mentions so far.
+    pub mentions: Vec<Mention>,
+    /// Mentions merged into others (dropped at the end), with their replacement.
+    pub absorbed: Vec<Option<Option<usize>>>,
+    /// Rooms.
+    pub rooms: Vec<RoomReading>,
+    /// Token ranges per room.
+    pub spans: Vec<Vec<Range<usize>>>,
+    scope: Scope,
+    room: usize,
+    next_group: u32,
+    settings_table: Option<usize>,
+    last_one: Option<usize>,
+    /// "Each X has ...": (first mention of the sentence, the other rooms to copy into).
+    each_rooms: Option<(usize, Vec<usize>)>,
+}
+
+fn is_room_placement(kind: RelationKind, target: Target) -> bool {
+    match target {
+        Target::Wall | Target::Corner | Target::Window | Target::Entrance | Target::Room => {
+            !matches!(kind, RelationKind::On)
+        }
+        _ => false,
+    }
+}
+
+impl<'a> Interp<'a> {
+    /// A new interpreter over `tokens` with the rooms of the structure.
+    pub fn new(
+        lex: &'a Lexicon,
+        tokens: &'a [Token],
+        rooms: Vec<RoomReading>,
+        scope: Scope,
+    ) -> Interp<'a> {
+        let n = rooms.len().max(1);
+        Interp {
+            lex,
+            tokens,
+            mentions: Vec::new(),
+            absorbed: Vec::new(),
+            rooms,
+            spans: vec![Vec::new(); n],
+            scope,
+            room: 0,
+            next_group: 0,
+            settings_table: None,
+            last_one: None,
+            each_rooms: None,
+        }
+    }
+
+    fn alive(&self, i: usize) -> bool {
+        self.absorbed.get(i).is_some_and(Option::is_none)
+    }
+
+    fn new_group(&mut self, kind: GroupKind) -> Group {
+        self.next_group += 1;
+        Group {
+            kind,
+            id: self.next_group,
+        }
+    }
+
+    /// Reads one sentence.
+    pub fn sentence(&mut self, chunks: &[Chunk]) {
+        self.sentence_chunks(chunks);
+        if let Some((first, rooms)) = self.each_rooms.take() {
+            self.copy_to_rooms(first, &rooms);
+        }
+    }
+
+    /// Copies the mentions from `first` on into each of `rooms` (references among them
+    /// follow the copies).
+    fn copy_to_rooms(&mut self, first: usize, rooms: &[usize]) {
+        let end = self.mentions.len();
+        for &room in rooms {
+            let base = self.mentions.len();
+            for i in first..end {
+                let dead = !self.alive(i);
+                let mut m = self.mentions[i].clone();
+                m.room = room;
+                let map = |t: usize| {
+                    if (first..end).contains(&t) {
+                        base + (t - first)
+                    } else {
+                        t
+                    }
+                };
+                for r in &mut m.relations {
+                    if let Target::Mention(t) = r.target {
+                        r.target = Target::Mention(map(t));
+                    }
+                }
+                m.per = match m.per {
+                    Some(super::mentions::Per::Each { parent }) => {
+                        Some(super::mentions::Per::Each {
+                            parent: map(parent),
+                        })
+                    }
+                    Some(super::mentions::Per::Setting { table }) => {
+                        Some(super::mentions::Per::Setting { table: map(table) })
+                    }
+                    None => None,
+                };
+                self.mentions.push(m);
+                // A merged source leaves a dropped copy, so indices stay aligned.
+                self.absorbed.push(if dead { Some(None) } else { None });
+            }
+        }
+    }
+
+    fn sentence_chunks(&mut self, chunks: &[Chunk]) {
+        let mut c = Clause::new();
+        let mut k = 0;
+        while k < chunks.len() {
+            let chunk = &chunks[k];
+            if let Some(sp) = self.spans.get_mut(self.room) {
+                sp.push(chunk.range.clone());
+            }
+            if c.skip_next && matches!(chunk.item, Item::With | Item::Verb(..) | Item::Prep(_)) {
+                c.skip_next = false;
+                k += 1;
+                continue;
+            }
+            c.skip_next = false;
+            match &chunk.item {
+                Item::Np(np) => self.np(&mut c, np, chunk, chunks, k),
+                Item::Prep(class) => self.prep(
+                    &mut c,
+                    class,
+                    chunks.get(k.wrapping_sub(1)).map(|x| &x.item),
+                ),
+                Item::Verb(class, word) => self.verb(&mut c, class, word, chunks, k),
+                Item::With => {
+                    if let Some(skip) = self.features_after_with(&mut c, chunks, k) {
+                        k = skip;
+                        continue;
+                    }
+                    self.with(&mut c);
+                }
+                Item::Without => c.negate = true,
+                Item::Each => self.each(&mut c, chunks, k),
+                Item::Comma | Item::And => {
+                    let comma = chunk.item == Item::Comma;
+                    if comma {
+                        c.group_open = None;
+                        c.list_since_comma.clear();
+                        if c.rel_scope {
+                            // "where one displays X and the other displays Y, pet beds ...":
+                            // the relative clause ends here.
+                            c.rel_scope = false;
+                            c.ctx = Ctx::Room;
+                            c.stack.clear();
+                        }
+                    }
+                    c.pending = None;
+                    if c.of_once {
+                        // "a cup of tea and two books": the "of" phrase is over.
+                        c.of_once = false;
+                        self.pop_ctx(&mut c);
+                    }
+                    c.sep_was_comma = comma || (c.after_sep && c.sep_was_comma);
+                    c.after_sep = true;
+                    if self.new_clause_follows(chunks, k) {
+                        let room = self.room;
+                        c = Clause::new();
+                        self.room = room;
+                    }
+                }
+                Item::Relative => c.relative = true,
+                Item::InTotal => self.in_total(&c),
+                Item::SetFor => self.set_for(&mut c, chunks, k),
+                Item::For => {
+                    c.skip_np = matches!(chunks.get(k + 1).map(|x| &x.item), Some(Item::Np(np)) if !matches!(np.head, Head::Object { .. }));
+                }
+                Item::Including => {
+                    if let Some(f) = c.last_np.first().cloned() {
+                        let ctx = if self.mentions[f.m].generic {
+                            Ctx::Members(f.m)
+                        } else {
+                            Ctx::Holder(vec![f], Intro::With)
+                        };
+                        self.push_ctx(&mut c, ctx);
+                    }
+                }
+                Item::Of => {
+                    // "a vase of flowers", "shelves of stuffed animals": contents, for the
+                    // next phrase only.
+                    if let Some(f) = c.focus.first().cloned()
+                        && (self.mentions[f.m].container
+                            || self
+                                .lex
+                                .lookup(&self.mentions[f.m].category)
+                                .is_some_and(|e| e.holds))
+                    {
+                        self.push_ctx(&mut c, Ctx::Holder(vec![f], Intro::Of));
+                        c.of_once = true;
+                    }
+                }
+                Item::Other(_) => {}
+            }
+            k += 1;
+        }
+    }
+
+    fn push_ctx(&mut self, c: &mut Clause, ctx: Ctx) {
+        let old = std::mem::replace(&mut c.ctx, ctx);
+        c.stack.push(old);
+    }
+
+    fn pop_ctx(&mut self, c: &mut Clause) {
+        if let Some(old) = c.stack.pop() {
+            c.ctx = old;
+        }
+    }
+
+    /// After "," or "and": does a new clause start (a phrase followed by its own verb)?
+    fn new_clause_follows(&self, chunks: &[Chunk], k: usize) -> bool {
+        let mut j = k + 1;
+        if chunks.get(j).is_some_and(|c| c.item == Item::And) {
+            j += 1;
+        }
+        if !matches!(chunks.get(j).map(|c| &c.item), Some(Item::Np(_))) {
+            return false;
+        }
+        j += 1;
+        while let Some(c) = chunks.get(j) {
+            match &c.item {
+                // A participle ("a bookshelf filled with ...") does not start a clause.
+                Item::Verb(class, word) => {
+                    return class != "styled"
+                        && class != "inspired"
+                        && !word.ends_with("ed")
+                        && !word.ends_with("ing");
+                }
+                Item::Np(_) | Item::With | Item::Prep(_) | Item::And | Item::Of => j += 1,
+                _ => return false,
+            }
+        }
+        false
+    }
+
+    // ---- noun phrases -------------------------------------------------------------------
+
+    fn np(&mut self, c: &mut Clause, np: &Np, chunk: &Chunk, chunks: &[Chunk], k: usize) {
+        let next_is_verb = matches!(chunks.get(k + 1).map(|x| &x.item), Some(Item::Verb(..)));
+        if c.skip_np {
+            c.skip_np = false;
+            return;
+        }
+        match &np.head {
+            Head::Room { .. } => self.room_np(c, np, next_is_verb),
+            Head::Landmark(class) => {
+                let Some(target) = landmark_target(class) else {
+                    return;
+                };
+                if let Some(p) = c.pending.take() {
+                    self.relate_pending(c, &p, target, Some(class), None);
+                } else if let Ctx::Cover(subj) = c.ctx.clone() {
+                    for r in subj {
+                        self.add_relation(r.m, Relation::new(RelationKind::On, target));
+                    }
+                }
+            }
+            Head::Part { kind, which } => {
+                let parent = if kind == "setting" {
+                    self.settings_table
+                } else {
+                    self.level_parent()
+                };
+                let Some(m) = parent else { return };
+                let part = match (kind.as_str(), np.ordinal, which.as_deref()) {
+                    ("setting", ..) => "setting".to_string(),
+                    (_, Some(o), _) => format!("level {o}"),
+                    (_, None, Some("other")) => "other levels".to_string(),
+                    (_, None, Some(w)) => format!("{w} level"),
+                    _ => "level".to_string(),
+                };
+                let r = Ref {
+                    m,
+                    instance: None,
+                    part: Some(part),
+                };
+                if let Some(p) = c.pending.take() {
+                    self.relate_pending(c, &p, Target::Mention(m), None, Some(r));
+                } else if c.verb.is_none() {
+                    c.subject.push(r.clone());
+                    c.focus = vec![r.clone()];
+                    if kind == "setting" {
+                        c.ctx = Ctx::Setting(m);
+                    }
+                }
+                c.last_np = vec![Ref::new(m)];
+            }
+            Head::Pronoun(p) => self.pronoun_np(c, *p),
+            Head::Setting | Head::Feature => {}
+            Head::NonObject => {
+                if c.verb.is_none() && c.subject.is_empty() && np.det.is_some() {
+                    // "A seating area in the center features ...": a zone.
+                    c.zone = true;
+                }
+                if let Ctx::StyleOf(targets) = c.ctx.clone() {
+                    self.add_styles(&targets, np);
+                }
+            }
+            Head::Object { .. } => self.object_np(c, np, chunk, next_is_verb),
+        }
+    }
+
+    fn room_np(&mut self, c: &mut Clause, np: &Np, next_is_verb: bool) {
+        if let Some(p) = c.pending.take() {
+            // "in the back of the room", "in the middle of the room".
+            self.relate_pending(c, &p, Target::Room, Some("room"), None);
+            return;
+        }
+        if let Ctx::StyleOf(targets) = c.ctx.clone() {
+            self.add_styles(&targets, np);
+            return;
+        }
+        if next_is_verb && c.verb.is_none() {
+            if self.scope == Scope::House
+                && let Some(i) = rooms::resolve(&self.rooms, np, self.room)
+                && i != self.room
+            {
+                // The chunk was recorded under the old room.
+                let moved = self.spans.get_mut(self.room).and_then(Vec::pop);
+                self.room = i;
+                if let (Some(r), Some(sp)) = (moved, self.spans.get_mut(i)) {
+                    sp.push(r);
+                }
+            }
+            if self.scope == Scope::House && np.det.as_deref() == Some("each") {
+                // "Each private office has ...": the same contents in every such room.
+                let same: Vec<usize> = (0..self.rooms.len())
+                    .filter(|&i| {
+                        i != self.room && self.rooms[i].room_type == self.rooms[self.room].room_type
+                    })
+                    .collect();
+                self.each_rooms = Some((self.mentions.len(), same));
+            }
+            c.subject_is_room = true;
+            c.ctx = Ctx::Room;
+        } else if c.verb.is_none() && c.subject.is_empty() {
+            c.subject_is_room = true;
+        } else {
+            // "a waiting area with four chairs" inside a room: a zone, not a holder.
+            c.focus.clear();
+            c.last_prep_obj = None;
+        }
+    }
+}
+
+fn is_plural_count(c: Count) -> bool {
+    !matches!(c, Count::Exactly(1))
+}

@@ -1,0 +1,394 @@
+//! Rooms and house structure: is the prompt one room or a house, which rooms with which
+//! counts ("two exam rooms", "four guest bedrooms with en-suite bathrooms"), and which room a
+//! later phrase is about ("the first exam room", "its bathroom", "the studio").
+//!
+//! The room list comes from the first sentence ("A dental office with a reception, two exam
+//! rooms, ..."). This module does not assign objects to rooms; the interpreter does, using
+//! [`resolve`] when a sentence names its room.
+
+use serde::{Deserialize, Serialize};
+
+use super::chunk::{Chunk, Head, Item, Np};
+use super::lexicon::Lexicon;
+use super::tokens::Token;
+
+/// One room or a house of several.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Scope {
+    /// A single room.
+    Room,
+    /// Several rooms.
+    House,
+}
+
+/// How full a room should look.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Density {
+    /// "minimalist", "spartan": only what is needed.
+    Minimalist,
+    /// "sparse", "bare", "empty".
+    Sparse,
+    /// "pristine", "tidy", "spotless": normal furniture, few loose objects.
+    Pristine,
+    /// "lived-in", "homey": a few more small objects.
+    LivedIn,
+    /// "cluttered", "messy": many small objects.
+    Cluttered,
+    /// "packed", "crowded", "overflowing": as much as fits.
+    Packed,
+}
+
+impl Density {
+    /// From a lexicon density class.
+    pub(crate) fn from_class(class: &str) -> Option<Density> {
+        Some(match class {
+            "minimalist" => Density::Minimalist,
+            "sparse" => Density::Sparse,
+            "pristine" => Density::Pristine,
+            "lived_in" => Density::LivedIn,
+            "cluttered" => Density::Cluttered,
+            "packed" => Density::Packed,
+            _ => return None,
+        })
+    }
+}
+
+/// One room of the reading.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RoomReading {
+    /// Room-type key (see [`crate::knowledge`]); `room` when nothing matched.
+    pub room_type: String,
+    /// Readable name, unique in the reading ("exam room 2", "second bedroom", "bathroom of
+    /// guest bedroom 1").
+    pub name: String,
+    /// The room words as written, singular ("exam room").
+    pub words: String,
+    /// Position among rooms listed together ("two exam rooms": 1 and 2).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ordinal: Option<u32>,
+    /// The room this one belongs to (an en-suite bathroom's bedroom).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parent: Option<usize>,
+    /// Size factor from words such as "small" (0.8) or "spacious" (1.35), house factor
+    /// included.
+    pub size_scale: f64,
+    /// Styles and themes of the whole room ("Star Wars", "Art Deco").
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub styles: Vec<String>,
+    /// Density words about this room.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density: Option<Density>,
+    /// The prompt text about this room (its sentences and clauses).
+    pub text: String,
+}
+
+impl RoomReading {
+    pub(crate) fn new(room_type: &str, words: &str, name: String) -> RoomReading {
+        RoomReading {
+            room_type: room_type.to_string(),
+            name,
+            words: words.to_string(),
+            ordinal: None,
+            parent: None,
+            size_scale: 1.0,
+            styles: Vec::new(),
+            density: None,
+            text: String::new(),
+        }
+    }
+}
+
+/// Size factor of a room phrase from its modifier words.
+pub(crate) fn size_of(lex: &Lexicon, np: &Np) -> f64 {
+    np.attrs
+        .modifiers
+        .iter()
+        .filter_map(|m| lex.room_size(&m.to_lowercase()))
+        .next()
+        .unwrap_or(1.0)
+}
+
+/// Density named by a room phrase's modifiers ("a cluttered garage", "a tidy office").
+pub(crate) fn density_of(lex: &Lexicon, np: &Np) -> Option<Density> {
+    np.attrs.modifiers.iter().find_map(|m| {
+        let w = m.to_lowercase();
+        lex.density(&w)
+            .or_else(|| lex.density_room_only(&w))
+            .and_then(Density::from_class)
+    })
+}
+
+/// The house structure read from the first sentence.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Structure {
+    /// Room or house.
+    pub scope: Scope,
+    /// The rooms (one for a single room).
+    pub rooms: Vec<RoomReading>,
+    /// "dental office", "boutique hotel" (houses only).
+    pub house_type: Option<String>,
+    /// Size factor of the whole (house) or of the room.
+    pub size_scale: f64,
+    /// Styles of the whole.
+    pub styles: Vec<String>,
+    /// Density of the whole.
+    pub density: Option<Density>,
+}
+
+fn ordinal_word(n: u32) -> &'static str {
+    const W: [&str; 16] = [
+        "",
+        "first",
+        "second",
+        "third",
+        "fourth",
+        "fifth",
+        "sixth",
+        "seventh",
+        "eighth",
+        "ninth",
+        "tenth",
+        "eleventh",
+        "twelfth",
+        "thirteenth",
+        "fourteenth",
+        "fifteenth",
+    ];
+    W.get(n as usize).copied().unwrap_or("")
+}
+
+/// Reads the room list of the first sentence's chunks. `tokens` give the house name.
+pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Structure {
+    let with_at = first.iter().position(|c| c.item == Item::With);
+    let head_np = first[..with_at.unwrap_or(first.len())]
+        .iter()
+        .find_map(|c| match &c.item {
+            Item::Np(np) => Some((np.as_ref(), c.range.clone())),
+            _ => None,
+        });
+    let head_np = head_np.as_ref().map(|(np, r)| (*np, r.clone()));
+    let size_scale = head_np.as_ref().map_or(1.0, |(np, _)| size_of(lex, np));
+    let styles = head_np
+        .as_ref()
+        .map(|(np, _)| np.attrs.styles.clone())
+        .unwrap_or_default();
+    let density = head_np.as_ref().and_then(|(np, _)| density_of(lex, np));
+    // Room phrases after "with"; "X with en-suite Ys" makes Ys children of X.
+    let mut listed: Vec<(&Np, Option<usize>)> = Vec::new();
+    if let Some(w) = with_at {
+        let mut last_room: Option<usize> = None;
+        let mut after_with = false;
+        let mut after_prep = false;
+        for c in &first[w + 1..] {
+            match &c.item {
+                Item::Np(np) => {
+                    // "in the middle of the room" is a place, not a listed room.
+                    let listed_room = !after_prep && !np.is_definite();
+                    after_prep = false;
+                    if listed_room && let Head::Room { .. } = np.head {
+                        let parent = if after_with { last_room } else { None };
+                        listed.push((np, parent));
+                        if parent.is_none() {
+                            last_room = Some(listed.len() - 1);
+                        }
+                    }
+                    after_with = false;
+                }
+                Item::With => after_with = true,
+                Item::Prep(_) => after_prep = true,
+                _ => {}
+            }
+        }
+    }
+    let head_is_room = head_np
+        .as_ref()
+        .is_some_and(|(np, _)| matches!(np.head, Head::Room { .. }));
+    let listed_count: u32 = listed
+        .iter()
+        .map(|(np, _)| np.number.unwrap_or(1).max(1))
+        .sum();
+    // "A pharmacy with a waiting area": one room with a zone; "a bedroom with an en-suite
+    // bathroom": two rooms.
+    let zone = |np: &Np| matches!(&np.head, Head::Room { words, .. } if ["area", "corner", "nook", "zone", "space"].iter().any(|z| words.ends_with(z)));
+    let single_zone = listed.len() == 1 && listed.iter().all(|(np, _)| zone(np));
+    let is_house = listed_count >= 2 || (listed_count == 1 && head_is_room && !single_zone);
+    if !is_house {
+        // One room: the first room phrase of the sentence (the head, usually).
+        let room_np = first.iter().find_map(|c| match &c.item {
+            Item::Np(np) if matches!(np.head, Head::Room { .. }) => Some(np.as_ref()),
+            _ => None,
+        });
+        let mut room = match room_np {
+            Some(np) => match &np.head {
+                Head::Room { key, words } => RoomReading::new(key, words, words.clone()),
+                _ => RoomReading::new("room", "room", "room".into()),
+            },
+            None => RoomReading::new("room", "room", "room".into()),
+        };
+        if let Some(np) = room_np {
+            room.size_scale = size_of(lex, np);
+            room.styles = np.attrs.styles.clone();
+            room.density = density_of(lex, np);
+        }
+        let scale = room.size_scale_or(size_scale);
+        return Structure {
+            scope: Scope::Room,
+            rooms: vec![room],
+            house_type: None,
+            size_scale: scale,
+            styles,
+            density,
+        };
+    }
+    let mut rooms: Vec<RoomReading> = Vec::new();
+    if listed_count == 1
+        && let Some((np, _)) = head_np.as_ref()
+        && let Head::Room { key, words } = &np.head
+    {
+        let mut r = RoomReading::new(key, words, words.clone());
+        r.size_scale = size_of(lex, np);
+        r.styles = np.attrs.styles.clone();
+        rooms.push(r);
+    }
+    // listed index -> room indices created for it
+    let mut made: Vec<Vec<usize>> = Vec::new();
+    for (np, parent) in &listed {
+        let Head::Room { key, words } = &np.head else {
+            made.push(Vec::new());
+            continue;
+        };
+        let n = np.number.unwrap_or(1).max(1);
+        let mut ids = Vec::new();
+        match parent.and_then(|p| made.get(p).cloned()) {
+            Some(parents) if !parents.is_empty() => {
+                // One child per parent room ("four guest bedrooms with en-suite bathrooms").
+                for p in parents {
+                    let pname = rooms[p].name.clone();
+                    let mut r = RoomReading::new(key, words, format!("{words} of {pname}"));
+                    r.parent = Some(p);
+                    r.size_scale = size_scale * size_of(lex, np);
+                    ids.push(rooms.len());
+                    rooms.push(r);
+                }
+            }
+            _ => {
+                for k in 0..n {
+                    let name = if n > 1 {
+                        format!("{words} {}", k + 1)
+                    } else if let (Some(o), Some("indefinite")) = (np.ordinal, np.det.as_deref()) {
+                        // "a second bedroom" is a name, not a position.
+                        format!("{} {words}", ordinal_word(o))
+                    } else {
+                        words.clone()
+                    };
+                    let mut r = RoomReading::new(key, words, name);
+                    r.ordinal = (n > 1).then_some(k + 1);
+                    r.size_scale = size_scale * size_of(lex, np);
+                    r.styles = np.attrs.styles.clone();
+                    ids.push(rooms.len());
+                    rooms.push(r);
+                }
+            }
+        }
+        made.push(ids);
+    }
+    // Names stay unique: a second "bathroom" listed separately becomes "bathroom 2".
+    for i in 0..rooms.len() {
+        let dup = rooms[..i]
+            .iter()
+            .filter(|r| r.name == rooms[i].name)
+            .count();
+        if dup > 0 {
+            rooms[i].name = format!("{} {}", rooms[i].name, dup + 1);
+        }
+    }
+    // "A small dental office with ...": the words before "with", without determiners and
+    // size words.
+    let upto = with_at.map_or(0, |w| first[w].range.start);
+    let from = first.first().map_or(0, |c| c.range.start);
+    let words: Vec<&str> = tokens[from..upto.max(from)]
+        .iter()
+        .filter(|t| t.is_word())
+        .map(|t| t.text.as_str())
+        .filter(|w| {
+            lex.determiner(w).is_none()
+                && lex.room_size(w).is_none()
+                && lex.size_adjective(w).is_none()
+        })
+        .collect();
+    let house_type = (!words.is_empty()).then(|| words.join(" "));
+    Structure {
+        scope: Scope::House,
+        rooms,
+        house_type,
+        size_scale,
+        styles,
+        density,
+    }
+}
+
+impl RoomReading {
+    fn size_scale_or(&self, fallback: f64) -> f64 {
+        if self.size_scale != 1.0 {
+            self.size_scale
+        } else {
+            fallback
+        }
+    }
+}
+
+/// The room a room phrase refers to, given the room in focus: by name ("the second
+/// bedroom"), by possessive ("its bathroom": the child of the room in focus), by ordinal among
+/// rooms of the type ("the first exam room"), else the first room of the type.
+pub(crate) fn resolve(rooms: &[RoomReading], np: &Np, current: usize) -> Option<usize> {
+    let Head::Room { key, words } = &np.head else {
+        return None;
+    };
+    if words == "room" && np.ordinal.is_none() {
+        return Some(current);
+    }
+    if let Some(o) = np.ordinal {
+        let name = format!("{} {words}", ordinal_word(o));
+        if let Some(i) = rooms.iter().position(|r| r.name == name) {
+            return Some(i);
+        }
+    }
+    if np.det.as_deref() == Some("possessive") {
+        // The focus room's own child of that type, or the focus room's parent's child.
+        let owner = rooms.get(current).and_then(|r| r.parent).unwrap_or(current);
+        if let Some(i) = rooms
+            .iter()
+            .position(|r| r.parent == Some(owner) && r.room_type == *key)
+        {
+            return Some(i);
+        }
+    }
+    let same: Vec<usize> = (0..rooms.len())
+        .filter(|&i| rooms[i].room_type == *key && rooms[i].parent.is_none())
+        .collect();
+    let same = if same.is_empty() {
+        (0..rooms.len())
+            .filter(|&i| rooms[i].room_type == *key)
+            .collect()
+    } else {
+        same
+    };
+    if let Some(o) = np.ordinal {
+        // Prefer rooms listed under the same words ("the first kids bedroom").
+        let by_words: Vec<usize> = same
+            .iter()
+            .copied()
+            .filter(|&i| rooms[i].words == *words)
+            .collect();
+        let pool = if by_words.is_empty() {
+            &same
+        } else {
+            &by_words
+        };
+        return pool.get(o.saturating_sub(1) as usize).copied();
+    }
+    let by_words = same.iter().copied().find(|&i| rooms[i].words == *words);
+    by_words.or_else(|| same.first().copied())
+}

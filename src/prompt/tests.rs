@@ -1,0 +1,504 @@
+//! Unit tests of the reader: counts, per-parent counts, relations, negation, density,
+//! attributes, references, open vocabulary and house splitting.
+
+use super::*;
+
+fn find<'a>(r: &'a Reading, cat: &str) -> &'a Mention {
+    r.mentions
+        .iter()
+        .find(|m| m.category == cat)
+        .unwrap_or_else(|| {
+            panic!(
+                "no {cat} in {:?}",
+                r.mentions.iter().map(|m| &m.category).collect::<Vec<_>>()
+            )
+        })
+}
+
+fn index(r: &Reading, cat: &str) -> usize {
+    r.mentions.iter().position(|m| m.category == cat).unwrap()
+}
+
+/// The relation of `cat` of `kind`, with its target rendered as a noun or landmark name.
+fn rel(r: &Reading, cat: &str, kind: RelationKind) -> Option<String> {
+    find(r, cat)
+        .relations
+        .iter()
+        .find(|x| x.kind == kind)
+        .map(|x| match x.target {
+            Target::Mention(i) => r.mentions[i].category.clone(),
+            t => format!("{t:?}").to_lowercase(),
+        })
+}
+
+#[test]
+fn counts_and_room_type() {
+    let r = read("A small kitchen with a table, four chairs and at least 10 mugs.");
+    assert_eq!(r.room_type, "kitchen");
+    assert_eq!(r.size_scale, 0.8);
+    assert_eq!(find(&r, "table").count, Count::Exactly(1));
+    assert_eq!(find(&r, "chair").count, Count::Exactly(4));
+    assert_eq!(find(&r, "mug").count, Count::AtLeast(10));
+}
+
+#[test]
+fn punctuation_scopes_numbers() {
+    let r = read("A kitchen with four chairs, plates and mugs.");
+    assert_eq!(find(&r, "chair").count, Count::Exactly(4));
+    assert_eq!(find(&r, "plate").count, Count::Several);
+    assert_eq!(find(&r, "mug").count, Count::Several);
+}
+
+#[test]
+fn count_forms() {
+    let r = read(
+        "A closet with exactly 5 pairs of shoes, a pair of scissors, a stack of 8 books, a dozen eggs, 10+ hats and more than 11 bowls.",
+    );
+    let shoe = find(&r, "shoe");
+    assert_eq!(
+        (shoe.count, shoe.group.map(|g| g.kind)),
+        (Count::Exactly(10), Some(GroupKind::Pair))
+    );
+    assert_eq!(find(&r, "scissors").count, Count::Exactly(1));
+    let book = find(&r, "book");
+    assert_eq!(
+        (book.count, book.group.map(|g| g.kind)),
+        (Count::Exactly(8), Some(GroupKind::Stack))
+    );
+    assert_eq!(find(&r, "egg").count, Count::Exactly(12));
+    assert_eq!(find(&r, "hat").count, Count::AtLeast(10));
+    assert_eq!(find(&r, "bowl").count, Count::AtLeast(12));
+    // "at least" carries over a list of bare numbers.
+    let r = read("The shelf holds at least 8 plates, 8 bowls, and a jar.");
+    assert_eq!(find(&r, "bowl").count, Count::AtLeast(8));
+    assert_eq!(find(&r, "jar").count, Count::Exactly(1));
+    // "in total" sets the count of the earlier phrase.
+    let r = read("There is a shelf with stacks of books, at least 15 books in total.");
+    assert_eq!(
+        r.mentions.iter().filter(|m| m.category == "book").count(),
+        1
+    );
+    assert_eq!(find(&r, "book").count, Count::AtLeast(15));
+}
+
+#[test]
+fn per_parent_counts() {
+    let r = read("A computer lab with six desks, each with a monitor, keyboard, and chair.");
+    for cat in ["monitor", "keyboard", "chair"] {
+        assert_eq!(r.total(index(&r, cat)), Count::Exactly(6), "{cat}");
+    }
+    let r = read("Two high tables with two stools each are near the window.");
+    assert_eq!(r.total(index(&r, "stool")), Count::Exactly(4));
+    let r = read("A restaurant with four dining tables. Pendant lights hang above each table.");
+    assert_eq!(r.total(index(&r, "pendant light")), Count::Exactly(4));
+    let r = read("A toy store with two toy bins, each containing at least five stuffed animals.");
+    assert_eq!(r.total(index(&r, "stuffed animal")), Count::AtLeast(10));
+}
+
+#[test]
+fn place_settings() {
+    let r = read(
+        "A dining room with a table set for 4 people. Each setting has a plate, a glass, a fork, and a knife.",
+    );
+    assert_eq!(find(&r, "table").place_settings, Some(4));
+    let plate = index(&r, "plate");
+    assert!(matches!(r.mentions[plate].per, Some(Per::Setting { .. })));
+    assert_eq!(r.total(plate), Count::Exactly(4));
+}
+
+#[test]
+fn relations_to_the_room() {
+    let r = read(
+        "A room with a bed against the wall, a plant in the corner, a rug in the middle of the room, a desk next to the window, \
+         a coat rack near the entrance, a bench by the door, a sofa across from the door, two lamps near the walls, \
+         a chandelier hanging from the ceiling, and a mirror on the wall.",
+    );
+    assert_eq!(
+        rel(&r, "bed", RelationKind::Against).as_deref(),
+        Some("wall")
+    );
+    assert_eq!(
+        rel(&r, "plant", RelationKind::In).as_deref(),
+        Some("corner")
+    );
+    assert_eq!(
+        rel(&r, "rug", RelationKind::Center).as_deref(),
+        Some("room")
+    );
+    assert_eq!(
+        rel(&r, "desk", RelationKind::NextTo).as_deref(),
+        Some("window")
+    );
+    assert_eq!(
+        rel(&r, "coat rack", RelationKind::Near).as_deref(),
+        Some("entrance")
+    );
+    assert_eq!(
+        rel(&r, "bench", RelationKind::Near).as_deref(),
+        Some("entrance")
+    );
+    assert_eq!(
+        rel(&r, "sofa", RelationKind::AcrossFrom).as_deref(),
+        Some("entrance")
+    );
+    assert_eq!(
+        rel(&r, "table lamp", RelationKind::Near).as_deref(),
+        Some("wall")
+    );
+    assert_eq!(
+        rel(&r, "chandelier", RelationKind::Hanging).as_deref(),
+        Some("ceiling")
+    );
+    assert_eq!(find(&r, "chandelier").support, Support::Ceiling);
+    assert_eq!(rel(&r, "mirror", RelationKind::On).as_deref(), Some("wall"));
+}
+
+#[test]
+fn relations_between_objects() {
+    let r = read(
+        "A living room with a sofa, two armchairs facing the sofa, a coffee table in front of the sofa, a lamp on the table, \
+         a painting above the sofa, a rug under the table, and a plant behind the sofa. A bowl with apples is on the table.",
+    );
+    assert_eq!(
+        rel(&r, "armchair", RelationKind::Facing).as_deref(),
+        Some("sofa")
+    );
+    assert_eq!(
+        rel(&r, "coffee table", RelationKind::InFrontOf).as_deref(),
+        Some("sofa")
+    );
+    assert_eq!(
+        rel(&r, "table lamp", RelationKind::On).as_deref(),
+        Some("coffee table")
+    );
+    assert_eq!(
+        rel(&r, "painting", RelationKind::Above).as_deref(),
+        Some("sofa")
+    );
+    assert_eq!(
+        rel(&r, "rug", RelationKind::Under).as_deref(),
+        Some("coffee table")
+    );
+    assert_eq!(
+        rel(&r, "plant", RelationKind::Behind).as_deref(),
+        Some("sofa")
+    );
+    assert_eq!(rel(&r, "apple", RelationKind::In).as_deref(), Some("bowl"));
+    let r = read(
+        "Two sofas face each other with a coffee table between them, and a nightstand on each side of the bed.",
+    );
+    assert_eq!(
+        rel(&r, "sofa", RelationKind::Facing).as_deref(),
+        Some("eachother")
+    );
+    assert_eq!(
+        rel(&r, "coffee table", RelationKind::Between).as_deref(),
+        Some("sofa")
+    );
+    assert_eq!(
+        rel(&r, "nightstand", RelationKind::Flanking).as_deref(),
+        Some("bed")
+    );
+    assert_eq!(find(&r, "nightstand").count, Count::Exactly(2));
+    let r = read(
+        "A bar with a counter. Shelves behind the counter display bottles. A stool is between the counter and the door.",
+    );
+    assert_eq!(
+        rel(&r, "shelf", RelationKind::Behind).as_deref(),
+        Some("counter")
+    );
+    assert_eq!(
+        rel(&r, "bottle", RelationKind::On).as_deref(),
+        Some("shelf")
+    );
+    let between = find(&r, "stool")
+        .relation(RelationKind::Between)
+        .cloned()
+        .unwrap();
+    assert_eq!(between.target, Target::Mention(index(&r, "counter")));
+}
+
+#[test]
+fn negations() {
+    let r = read(
+        "A living room with a sofa. There is no coffee table, no TV or radio, and the room is without a rug.",
+    );
+    for cat in ["coffee table", "tv", "radio", "rug"] {
+        assert!(find(&r, cat).negated, "{cat}");
+    }
+    assert!(!find(&r, "sofa").negated);
+    let r = read("A bedroom without a desk, with a bed and a wardrobe.");
+    assert!(find(&r, "desk").negated);
+    assert!(!find(&r, "bed").negated && !find(&r, "wardrobe").negated);
+}
+
+#[test]
+fn density_words() {
+    for (text, d) in [
+        ("A cluttered garage.", Density::Cluttered),
+        ("A minimalist bedroom with a bed.", Density::Minimalist),
+        ("A lived-in living room.", Density::LivedIn),
+        ("A pristine kitchen.", Density::Pristine),
+        ("A sparse office.", Density::Sparse),
+        ("A packed storage room.", Density::Packed),
+    ] {
+        assert_eq!(read(text).density, Some(d), "{text}");
+    }
+    assert_eq!(read("A kitchen with an empty bowl.").density, None);
+}
+
+#[test]
+fn attributes_and_styles() {
+    let r = read(
+        "An Art Deco styled living room with a red velvet sofa, a brass lamp, a marble table, a Picasso-style painting, \
+         a Star Wars themed rug, a steampunk clock and a Frozen poster.",
+    );
+    assert_eq!(r.rooms[0].styles, ["Art Deco"]);
+    let sofa = find(&r, "sofa");
+    assert_eq!(sofa.attributes.colors, ["red"]);
+    assert_eq!(sofa.attributes.materials, ["fabric"]);
+    assert_eq!(sofa.description(), "red velvet sofa");
+    assert_eq!(find(&r, "table lamp").attributes.materials, ["brass"]);
+    assert_eq!(find(&r, "table").attributes.materials, ["marble"]);
+    assert_eq!(find(&r, "painting").attributes.styles, ["Picasso"]);
+    assert_eq!(find(&r, "rug").attributes.styles, ["Star Wars"]);
+    assert_eq!(find(&r, "wall clock").attributes.styles, ["steampunk"]);
+    assert_eq!(find(&r, "poster").attributes.styles, ["Frozen"]);
+    let r = read("A desk with brass fittings and exposed gears.");
+    assert_eq!(
+        find(&r, "desk").attributes.features,
+        ["brass fittings and exposed gears"]
+    );
+    assert_eq!(r.mentions.len(), 1);
+}
+
+#[test]
+fn references_and_members() {
+    let r = read(
+        "A playroom with two bins. One bin contains 2 teddy bears. The other bin contains at least 5 wooden blocks.",
+    );
+    assert_eq!(
+        r.mentions
+            .iter()
+            .filter(|m| m.category == "storage bin")
+            .count(),
+        1
+    );
+    assert_eq!(find(&r, "teddy bear").relations[0].instance, Some(0));
+    assert_eq!(find(&r, "toy block").relations[0].instance, Some(1));
+    let r =
+        read("A museum with a display table holding a vase. Another display table has a scroll.");
+    assert_eq!(find(&r, "display table").count, Count::Exactly(2));
+    assert_eq!(find(&r, "scroll").relations[0].instance, Some(1));
+    let r = read("A dining table with four chairs surrounding it.");
+    assert_eq!(
+        rel(&r, "chair", RelationKind::Around).as_deref(),
+        Some("dining table")
+    );
+    let r = read("A desk lamp rests on the nightstand.");
+    assert!(find(&r, "nightstand").definite);
+}
+
+#[test]
+fn open_vocabulary() {
+    let r = read("A lab with a glowing flux capacitor and two hoverboards on a shelf.");
+    let f = find(&r, "flux capacitor");
+    assert!(!f.known && f.head.is_none());
+    assert_eq!(f.attributes.adjectives, ["glowing"]);
+    let h = find(&r, "hoverboard");
+    assert_eq!(h.count, Count::Exactly(2));
+    assert_eq!(
+        rel(&r, "hoverboard", RelationKind::On).as_deref(),
+        Some("shelf")
+    );
+    // A compound with a known head keeps the head's lexicon entry.
+    let r = read("A shop with a velociraptor lamp.");
+    assert_eq!(
+        find(&r, "table lamp").attributes.modifiers,
+        ["velociraptor"]
+    );
+}
+
+#[test]
+fn house_splitting() {
+    let r = read(
+        "A dental office with a reception, two exam rooms, and a bathroom. The first exam room has a dental chair. \
+         The second exam room has a sink. The bathroom has a toilet.",
+    );
+    assert_eq!(r.scope, Scope::House);
+    assert_eq!(r.house_type.as_deref(), Some("dental office"));
+    let types: Vec<&str> = r.rooms.iter().map(|x| x.room_type.as_str()).collect();
+    assert_eq!(types, ["reception", "exam_room", "exam_room", "bathroom"]);
+    assert_eq!(r.rooms[1].ordinal, Some(1));
+    assert_eq!(find(&r, "dental chair").room, 1);
+    assert_eq!(find(&r, "sink").room, 2);
+    assert_eq!(find(&r, "toilet").room, 3);
+    assert!(r.rooms[2].text.contains("The second exam room has a sink"));
+    let r = read(
+        "A hotel with two guest bedrooms with en-suite bathrooms and a lounge. The first guest bedroom has a bed and its \
+         bathroom has a shower. The second guest bedroom has a desk.",
+    );
+    assert_eq!(r.rooms.len(), 5);
+    let shower = find(&r, "shower");
+    assert_eq!(r.rooms[shower.room].room_type, "bathroom");
+    assert_eq!(r.rooms[shower.room].parent, Some(find(&r, "bed").room));
+    let r = read(
+        "An apartment with a master bedroom and a second bedroom. The second bedroom has a desk.",
+    );
+    assert_eq!(r.rooms[1].name, "second bedroom");
+    assert_eq!(find(&r, "desk").room, 1);
+    // One room with a zone is not a house.
+    assert_eq!(
+        read("A pharmacy with a waiting area with four chairs.").scope,
+        Scope::Room
+    );
+}
+
+mod robustness {
+    use proptest::prelude::*;
+
+    use crate::prompt::read;
+    use crate::stages::plan::plan_rooms;
+
+    const WORDS: &[&str] = &[
+        "a",
+        "the",
+        "its",
+        "each",
+        "one",
+        "other",
+        "another",
+        "two",
+        "5",
+        "at",
+        "least",
+        "exactly",
+        "pairs",
+        "of",
+        "stack",
+        "pile",
+        "with",
+        "without",
+        "no",
+        "and",
+        "or",
+        ",",
+        ".",
+        "on",
+        "in",
+        "the",
+        "corner",
+        "wall",
+        "middle",
+        "room",
+        "next",
+        "to",
+        "window",
+        "facing",
+        "it",
+        "them",
+        "each other",
+        "surrounded",
+        "by",
+        "set",
+        "for",
+        "people",
+        "setting",
+        "level",
+        "first",
+        "top",
+        "table",
+        "chairs",
+        "bed",
+        "nightstand",
+        "shelf",
+        "books",
+        "bowl",
+        "apples",
+        "fruits",
+        "kitchen",
+        "bathroom",
+        "bedrooms",
+        "house",
+        "has",
+        "contains",
+        "holds",
+        "stacked",
+        "hanging",
+        "ceiling",
+        "above",
+        "between",
+        "Star",
+        "Wars",
+        "themed",
+        "Frozen",
+        "blue",
+        "wooden",
+        "tiny",
+        "cluttered",
+        "flux",
+        "capacitor",
+        "in total",
+        "its",
+        "en-suite",
+        "which",
+        "where",
+        "is",
+        "are",
+        "styled",
+        "like",
+        "inspired",
+        "covers",
+        "flank",
+        "entrance",
+        "10+",
+        "(",
+        ")",
+        "'s",
+        "-",
+        "x-ray",
+        "room.",
+        "with,",
+        "each.",
+        "of.",
+    ];
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+        #[test]
+        fn any_word_salad_reads_and_plans_without_panicking(idx in proptest::collection::vec(0..WORDS.len(), 0..40)) {
+            let text: Vec<&str> = idx.iter().map(|&i| WORDS[i]).collect();
+            let text = text.join(" ");
+            let r = read(&text);
+            prop_assert!(!r.rooms.is_empty());
+            for m in &r.mentions {
+                prop_assert!(m.room < r.rooms.len());
+                for rel in &m.relations {
+                    if let crate::prompt::Target::Mention(t) = rel.target {
+                        prop_assert!(t < r.mentions.len());
+                    }
+                }
+            }
+            let plans = plan_rooms(&r);
+            prop_assert_eq!(plans.len(), r.rooms.len());
+        }
+
+        #[test]
+        fn arbitrary_text_reads_without_panicking(text in "\\PC{0,200}") {
+            let r = read(&text);
+            prop_assert!(!r.rooms.is_empty());
+            let _ = plan_rooms(&r);
+        }
+    }
+}
+
+#[test]
+fn huge_numbers_saturate() {
+    let r = read(
+        "A hall with 4000000000 desks, each with 4000000000 chairs, and 4000000000 pairs of shoes.",
+    );
+    let chair = index(&r, "chair");
+    assert_eq!(r.total(chair), Count::Exactly(u32::MAX));
+    let plans = crate::stages::plan::plan_rooms(&r);
+    assert!(plans[0].all_wants().all(|w| w.count <= 120));
+}

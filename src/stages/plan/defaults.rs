@@ -1,0 +1,476 @@
+//! What the room type adds: seats and settings for set tables, furniture, wall and ceiling
+//! items scaled by density and size, usual parents of small objects, default small objects,
+//! and the final order.
+
+use std::collections::BTreeMap;
+
+use super::{
+    Arrangement, Builder, MAX_COUNT, RoomPlan, SurfaceItem, SurfaceWant, Want, clutter_factor,
+    covers, fill_factor, is_seat, is_table_like, pick, place_to_arrangement,
+};
+use crate::knowledge::{KbItem, Place};
+use crate::prompt::{Density, Mention, Support};
+
+impl Builder<'_> {
+    /// "A table set for 4 people": seats per setting when the prompt names none, default
+    /// setting items when it names none.
+    pub(super) fn place_settings(&mut self) {
+        let tables: Vec<(usize, Mention)> = self
+            .mentions()
+            .filter(|(_, m)| m.place_settings.is_some() && !m.negated)
+            .map(|(i, m)| (i, m.clone()))
+            .collect();
+        for (i, t) in tables {
+            let per = t.place_settings.unwrap_or(0);
+            let (tables_n, _) = self.count(i, 0);
+            let seats = per.saturating_mul(tables_n);
+            let has_seats = self
+                .plan
+                .furniture
+                .iter()
+                .any(|w| is_seat(self.lex, &w.noun));
+            if !has_seats && seats > 0 && !self.excluded("chair") {
+                let seat = self
+                    .kb
+                    .seat_for(&t.category)
+                    .map_or("chair", |(s, _)| s)
+                    .to_string();
+                self.plan.furniture.push(Want {
+                    noun: seat.clone(),
+                    description: self.default_description(&seat, Support::Floor),
+                    count: seats.min(MAX_COUNT),
+                    explicit: false,
+                    at_least: false,
+                    arrangement: Arrangement::Around {
+                        parent: t.category.clone(),
+                    },
+                    height_m: None,
+                    parent_instance: None,
+                });
+            } else if has_seats {
+                // Seats the prompt counted go around the set table.
+                for w in self
+                    .plan
+                    .furniture
+                    .iter_mut()
+                    .filter(|w| is_seat(self.lex, &w.noun))
+                {
+                    if matches!(w.arrangement, Arrangement::AgainstWall | Arrangement::Free) {
+                        w.arrangement = Arrangement::Around {
+                            parent: t.category.clone(),
+                        };
+                    }
+                }
+            }
+            let has_items = self
+                .surface
+                .iter()
+                .any(|s| s.place_settings && s.parent == t.category);
+            if !has_items && seats > 0 {
+                let rule = self
+                    .kb
+                    .surface_rule("dining table")
+                    .map(|r| r.items.clone())
+                    .unwrap_or_else(|| {
+                        vec![
+                            "plate".into(),
+                            "glass".into(),
+                            "fork".into(),
+                            "knife".into(),
+                        ]
+                    });
+                for item in rule {
+                    if self.excluded(&item) {
+                        continue;
+                    }
+                    self.surface.push(SurfaceItem {
+                        parent: t.category.clone(),
+                        want: Want {
+                            noun: item.clone(),
+                            description: item.clone(),
+                            count: seats.min(MAX_COUNT),
+                            explicit: false,
+                            at_least: false,
+                            arrangement: Arrangement::Free,
+                            height_m: None,
+                            parent_instance: None,
+                        },
+                        place_settings: true,
+                    });
+                }
+            }
+        }
+    }
+
+    /// The explicit noun that covers a default noun, if any.
+    pub(super) fn covered_by(&self, noun: &str) -> Option<String> {
+        let present = self
+            .plan
+            .furniture
+            .iter()
+            .chain(&self.plan.wall)
+            .chain(&self.plan.ceiling)
+            .map(|w| w.noun.as_str())
+            .chain(self.surface.iter().map(|s| s.want.noun.as_str()));
+        let mut found = None;
+        for p in present {
+            if p == noun {
+                return Some(p.to_string());
+            }
+            if found.is_none() && covers(self.lex, p, noun) {
+                found = Some(p.to_string());
+            }
+        }
+        found
+    }
+
+    /// Room-type defaults, scaled by density and room size, minus what the prompt covers or
+    /// excludes.
+    pub(super) fn defaults(&mut self) {
+        let Some(rt) = self.rt else { return };
+        let t = fill_factor(self.density);
+        let explicit_floor = self.plan.furniture.iter().filter(|w| w.explicit).count();
+        // A prompt that lists its furniture gets the essentials, not every option.
+        let t_optional = if explicit_floor >= 3 { 0.0 } else { t };
+        let scale = self
+            .reading
+            .rooms
+            .get(self.room)
+            .map_or(1.0, |r| r.size_scale);
+        let add = |b: &mut Self, item: &KbItem, support: Support| {
+            if b.excluded(&item.noun) {
+                return;
+            }
+            if let Some(by) = b.covered_by(&item.noun) {
+                b.floor_of.insert(item.noun.clone(), by);
+                return;
+            }
+            let tt = if item.count[0] == 0 { t_optional } else { t };
+            let mut count = pick(item.count, tt);
+            if matches!(item.place, Some(Place::Grid | Place::RowAlongWall)) && scale != 1.0 {
+                count = ((count as f64) * scale).round() as u32;
+                count = count.clamp(item.count[0].max(1), item.count[1].max(1) * 2);
+            }
+            if count == 0 {
+                return;
+            }
+            let mut arrangement = item.place.as_ref().map_or(
+                if support == Support::Floor {
+                    Arrangement::AgainstWall
+                } else {
+                    Arrangement::Free
+                },
+                place_to_arrangement,
+            );
+            // Rule targets name default nouns; use what the plan has instead.
+            arrangement = arrangement
+                .with_target(|n| b.floor_of.get(n).cloned().unwrap_or_else(|| n.to_string()));
+            if let Some(target) = arrangement.target().map(str::to_string)
+                && !b.has(&target)
+            {
+                // Seats without their table, nightstands without a bed: skip optional ones;
+                // keep required ones against a wall.
+                if item.count[0] == 0 {
+                    return;
+                }
+                arrangement = match support {
+                    Support::Floor => Arrangement::AgainstWall,
+                    _ => Arrangement::Free,
+                };
+            }
+            let want = Want {
+                noun: item.noun.clone(),
+                description: b.default_description(&item.noun, support),
+                count,
+                explicit: false,
+                at_least: false,
+                arrangement,
+                height_m: item.height,
+                parent_instance: None,
+            };
+            match support {
+                Support::Floor => b.plan.furniture.push(want),
+                Support::Wall => b.plan.wall.push(want),
+                _ => b.plan.ceiling.push(want),
+            }
+        };
+        for item in &rt.furniture {
+            add(self, item, Support::Floor);
+        }
+        for item in &rt.wall_items {
+            add(self, item, Support::Wall);
+        }
+        for item in &rt.ceiling {
+            add(self, item, Support::Ceiling);
+        }
+        // Seats for table-like pieces the prompt named "with chairs" but without a count are
+        // handled by `count`; seats for set tables by `place_settings`.
+    }
+
+    pub(super) fn has(&self, noun: &str) -> bool {
+        self.plan
+            .furniture
+            .iter()
+            .chain(&self.plan.wall)
+            .chain(&self.plan.ceiling)
+            .any(|w| w.noun == noun)
+    }
+
+    /// Small objects without a named parent go where they usually rest; a usual parent the
+    /// room lacks is added ("a TV" brings a TV stand).
+    pub(super) fn surface_parents(&mut self) {
+        let lex = self.lex;
+        for k in 0..self.surface.len() {
+            if !self.surface[k].parent.is_empty() {
+                continue;
+            }
+            let noun = self.surface[k].want.noun.clone();
+            let rests: Vec<String> = lex
+                .lookup(&noun)
+                .map(|e| e.rests_on.clone())
+                .unwrap_or_default();
+            let room_rule = self
+                .rt
+                .and_then(|r| {
+                    r.surfaces
+                        .iter()
+                        .find(|s| s.items.contains(&noun) && self.has(&s.parent))
+                })
+                .map(|s| s.parent.clone());
+            let present = rests.iter().find_map(|p| {
+                self.plan
+                    .furniture
+                    .iter()
+                    .find(|w| covers(lex, &w.noun, p))
+                    .map(|w| w.noun.clone())
+            });
+            let parent = if let Some(p) = present.or(room_rule) {
+                p
+            } else if let Some(p) = rests.first().filter(|p| !self.excluded(p)) {
+                let p = p.clone();
+                let support = lex.lookup(&p).map_or(Support::Floor, |e| e.support);
+                let arrangement = self.kb_arrangement(&p).unwrap_or(Arrangement::AgainstWall);
+                let want = Want {
+                    noun: p.clone(),
+                    description: self.default_description(&p, support),
+                    count: 1,
+                    explicit: false,
+                    at_least: false,
+                    arrangement,
+                    height_m: None,
+                    parent_instance: None,
+                };
+                match support {
+                    Support::Wall => self.plan.wall.push(want),
+                    _ => self.plan.furniture.push(want),
+                }
+                p
+            } else {
+                "any".to_string()
+            };
+            self.surface[k].parent = parent;
+        }
+    }
+
+    /// Default small objects on parents that the prompt left empty.
+    pub(super) fn surface_defaults(&mut self) {
+        let cf = clutter_factor(self.density);
+        let t = fill_factor(self.density);
+        let parents: Vec<(String, u32)> = self
+            .plan
+            .furniture
+            .iter()
+            .chain(&self.plan.wall)
+            .map(|w| (w.noun.clone(), w.count))
+            .collect();
+        let mut done: Vec<String> = Vec::new();
+        for (parent, n_parents) in parents {
+            if done.contains(&parent) || self.surface.iter().any(|s| s.parent == parent) {
+                continue;
+            }
+            done.push(parent.clone());
+            let rule = self
+                .rt
+                .and_then(|r| r.surface_rule(&parent))
+                .or_else(|| self.kb.surface_rule(&parent))
+                .cloned();
+            let Some(rule) = rule else { continue };
+            if rule.place_settings {
+                let seats: u32 = self
+                    .plan
+                    .furniture
+                    .iter()
+                    .filter(|w| matches!(&w.arrangement, Arrangement::Around { parent: p } if *p == parent))
+                    .map(|w| w.count)
+                    .sum();
+                if seats == 0 || matches!(self.density, Some(Density::Minimalist | Density::Sparse))
+                {
+                    continue;
+                }
+                let items: Vec<String> = rule
+                    .items
+                    .iter()
+                    .filter(|i| !self.excluded(i))
+                    .cloned()
+                    .collect();
+                for item in items {
+                    self.surface.push(SurfaceItem {
+                        parent: parent.clone(),
+                        want: Want {
+                            noun: item.clone(),
+                            description: item.clone(),
+                            count: seats.min(MAX_COUNT),
+                            explicit: false,
+                            at_least: false,
+                            arrangement: Arrangement::Free,
+                            height_m: None,
+                            parent_instance: None,
+                        },
+                        place_settings: true,
+                    });
+                }
+                continue;
+            }
+            let per_parent = ((pick(rule.count, t) as f64) * cf).round() as u32;
+            let total = per_parent.saturating_mul(n_parents).min(MAX_COUNT);
+            let items: Vec<&String> = rule.items.iter().filter(|i| !self.excluded(i)).collect();
+            if items.is_empty() || total == 0 {
+                continue;
+            }
+            // The most typical object takes half (a bookshelf is mostly books); the rest
+            // cycle through the list in order.
+            let mut counts: Vec<(String, u32)> = Vec::new();
+            let first = if items.len() > 1 && total >= 4 {
+                total.div_ceil(2)
+            } else {
+                0
+            };
+            if first > 0 {
+                counts.push((items[0].clone(), first));
+            }
+            let rest: Vec<&String> = if first > 0 {
+                items[1..].to_vec()
+            } else {
+                items.clone()
+            };
+            for k in 0..(total - first) as usize {
+                let noun = rest[k % rest.len()].clone();
+                match counts.iter_mut().find(|(n, _)| *n == noun) {
+                    Some((_, c)) => *c += 1,
+                    None => counts.push((noun, 1)),
+                }
+            }
+            for (noun, c) in counts {
+                self.surface.push(SurfaceItem {
+                    parent: parent.clone(),
+                    want: Want {
+                        noun: noun.clone(),
+                        description: noun,
+                        count: c,
+                        explicit: false,
+                        at_least: false,
+                        arrangement: Arrangement::Free,
+                        height_m: None,
+                        parent_instance: None,
+                    },
+                    place_settings: false,
+                });
+            }
+        }
+    }
+
+    /// Arrangements whose target never made it into the plan fall back: a seat goes to a
+    /// table-like piece that is there, anything else to a wall (or anywhere, off the floor).
+    pub(super) fn repair_targets(&mut self) {
+        let planned: Vec<String> = self
+            .plan
+            .furniture
+            .iter()
+            .chain(&self.plan.wall)
+            .chain(&self.plan.ceiling)
+            .map(|w| w.noun.clone())
+            .collect();
+        let table = self
+            .plan
+            .furniture
+            .iter()
+            .find(|w| is_table_like(self.lex, &w.noun))
+            .map(|w| w.noun.clone());
+        let lex = self.lex;
+        let fix = |w: &mut Want, floor: bool| {
+            let Some(t) = w.arrangement.target() else {
+                return;
+            };
+            if planned.iter().any(|p| p == t)
+                || (t == w.noun && matches!(w.arrangement, Arrangement::Facing { .. }))
+            {
+                return;
+            }
+            w.arrangement = match (&table, floor && is_seat(lex, &w.noun)) {
+                (Some(t), true) => Arrangement::Around { parent: t.clone() },
+                _ if floor => Arrangement::AgainstWall,
+                _ => Arrangement::Free,
+            };
+        };
+        for w in &mut self.plan.furniture {
+            fix(w, true);
+        }
+        for w in self
+            .plan
+            .wall
+            .iter_mut()
+            .chain(self.plan.ceiling.iter_mut())
+        {
+            fix(w, false);
+        }
+    }
+
+    pub(super) fn finish(mut self) -> RoomPlan {
+        self.repair_targets();
+        // Furniture order: anchors first, then what refers to them.
+        let targets: BTreeMap<String, Option<String>> = self
+            .plan
+            .furniture
+            .iter()
+            .map(|w| (w.noun.clone(), w.arrangement.target().map(str::to_string)))
+            .collect();
+        let depth = |w: &Want| -> usize {
+            let mut d = 0;
+            let mut cur = w.arrangement.target().map(str::to_string);
+            while let Some(t) = cur {
+                if d > 4 || !targets.contains_key(&t) || t == w.noun {
+                    break;
+                }
+                d += 1;
+                cur = targets.get(&t).cloned().flatten();
+            }
+            d
+        };
+        let mut keyed: Vec<(usize, bool, usize, Want)> = self
+            .plan
+            .furniture
+            .drain(..)
+            .enumerate()
+            .map(|(i, w)| (depth(&w), !w.explicit, i, w))
+            .collect();
+        keyed.sort_by_key(|(d, e, i, _)| (*d, *e, *i));
+        self.plan.furniture = keyed.into_iter().map(|(.., w)| w).collect();
+        // Group small objects by parent, keeping first-seen order.
+        for s in self.surface {
+            match self
+                .plan
+                .surfaces
+                .iter_mut()
+                .find(|g| g.parent == s.parent && g.place_settings == s.place_settings)
+            {
+                Some(g) => g.items.push(s.want),
+                None => self.plan.surfaces.push(SurfaceWant {
+                    parent: s.parent,
+                    items: vec![s.want],
+                    place_settings: s.place_settings,
+                }),
+            }
+        }
+        self.plan
+    }
+}

@@ -1,0 +1,385 @@
+//! What the prompt asked for: counts (per parent, per setting, "several"), arrangements from
+//! relations, descriptions with attributes, small objects and their parents.
+
+use std::collections::BTreeMap;
+
+use super::{
+    Arrangement, Builder, MAX_COUNT, SurfaceItem, Want, covers, fill_factor, is_seat,
+    is_table_like, pick, place_to_arrangement,
+};
+use crate::knowledge::Place;
+use crate::prompt::{self, Count, GroupKind, Mention, Per, RelationKind, Support, Target};
+
+impl Builder<'_> {
+    pub(super) fn mentions(&self) -> impl Iterator<Item = (usize, &Mention)> {
+        self.reading.room_mentions(self.room)
+    }
+
+    pub(super) fn excluded(&self, noun: &str) -> bool {
+        self.plan
+            .excluded
+            .iter()
+            .any(|x| covers(self.lex, noun, x) || x == noun)
+    }
+
+    /// Count of mention `i` in this plan: a plain count, or a per-parent count resolved
+    /// against the parent's planned count; "several" from the knowledge base.
+    pub(super) fn count(&self, i: usize, depth: usize) -> (u32, bool) {
+        let Some(m) = self.reading.mentions.get(i) else {
+            return (1, false);
+        };
+        let unit = |m: &Mention, per_parent: Option<&Mention>| -> (u32, bool) {
+            match m.count {
+                Count::Exactly(n) => (n, false),
+                Count::AtLeast(n) => (n, true),
+                Count::Several => (self.several(m, per_parent), false),
+            }
+        };
+        if depth > 4 {
+            return unit(m, None);
+        }
+        match m.per {
+            None => unit(m, None),
+            Some(Per::Each { parent }) => {
+                let p = self.reading.mentions.get(parent);
+                let (u, a) = unit(m, p);
+                let (n, b) = self.count(parent, depth + 1);
+                (u.saturating_mul(n), a || b)
+            }
+            Some(Per::Setting { table }) => {
+                let (u, a) = unit(m, None);
+                let settings = self
+                    .reading
+                    .mentions
+                    .get(table)
+                    .and_then(|t| t.place_settings)
+                    .unwrap_or(1);
+                let (n, b) = self.count(table, depth + 1);
+                (u.saturating_mul(settings).saturating_mul(n), a || b)
+            }
+        }
+    }
+
+    /// What "several" means for a noun (per parent when `parent` is given).
+    pub(super) fn several(&self, m: &Mention, parent: Option<&Mention>) -> u32 {
+        if let Some(p) = parent {
+            if is_seat(self.lex, &m.category)
+                && let Some((_, n)) = self.kb.seat_for(&p.category)
+                && n > 0
+            {
+                return n;
+            }
+            return if m.support == Support::Surface { 3 } else { 1 };
+        }
+        let t = fill_factor(self.density);
+        if let Some(item) = self.rt.and_then(|r| r.item(&m.category)) {
+            return pick([item.count[0].max(2), item.count[1].max(2)], t);
+        }
+        if m.support == Support::Surface {
+            let rule = self
+                .rt
+                .and_then(|r| r.surfaces.iter().find(|s| s.items.contains(&m.category)))
+                .or_else(|| {
+                    self.kb
+                        .surface_rules()
+                        .iter()
+                        .find(|s| s.items.contains(&m.category))
+                });
+            if let Some(rule) = rule {
+                return pick(rule.count, t).max(3);
+            }
+            return if m.category == "book" { 12 } else { 4 };
+        }
+        3
+    }
+
+    pub(super) fn describe(&self, m: &Mention, support: Support) -> String {
+        let d = m.description();
+        if m.attributes.styles.is_empty()
+            && support != Support::Surface
+            && let Some(s) = self.styles.first()
+        {
+            return format!("{s} style {d}");
+        }
+        d
+    }
+
+    pub(super) fn default_description(&self, noun: &str, support: Support) -> String {
+        match self.styles.first() {
+            Some(s) if support != Support::Surface => format!("{s} style {noun}"),
+            _ => noun.to_string(),
+        }
+    }
+
+    /// Arrangement from a mention's relations (explicit first), or None.
+    pub(super) fn relation_arrangement(&self, m: &Mention, count: u32) -> Option<Arrangement> {
+        let mentions = &self.reading.mentions;
+        let cat = |t: Target| -> Option<String> {
+            t.mention()
+                .and_then(|j| mentions.get(j))
+                .map(|x| x.category.clone())
+        };
+        let mut rels: Vec<&prompt::Relation> = m.relations.iter().collect();
+        rels.sort_by_key(|r| r.implied);
+        // Most specific first: seats around tables, facing, between, flanking, beside...
+        let rank = |k: RelationKind| match k {
+            RelationKind::Around => 0,
+            RelationKind::InFrontOf => 1,
+            RelationKind::Facing => 2,
+            RelationKind::Between => 3,
+            RelationKind::Flanking => 4,
+            RelationKind::Under
+            | RelationKind::Behind
+            | RelationKind::NextTo
+            | RelationKind::With => 5,
+            RelationKind::Near => 6,
+            _ => 7,
+        };
+        rels.sort_by_key(|r| (r.implied, rank(r.kind)));
+        for r in rels {
+            let a = match (r.kind, r.target) {
+                (RelationKind::Around, t) => cat(t).map(|parent| Arrangement::Around { parent }),
+                (RelationKind::InFrontOf, t @ Target::Mention(_)) => cat(t).map(|target| {
+                    if is_seat(self.lex, &m.category) && is_table_like(self.lex, &target) {
+                        Arrangement::Around { parent: target }
+                    } else {
+                        Arrangement::InFront { target }
+                    }
+                }),
+                (RelationKind::Facing, Target::EachOther) => Some(Arrangement::Facing {
+                    target: m.category.clone(),
+                }),
+                (RelationKind::Facing, Target::Window) => Some(Arrangement::NearWindow),
+                (RelationKind::Facing, t @ Target::Mention(_)) => {
+                    cat(t).map(|target| Arrangement::Facing { target })
+                }
+                (RelationKind::Between, t) => {
+                    let mut targets: Vec<String> = cat(t).into_iter().collect();
+                    targets.extend(r.second.and_then(cat));
+                    (!targets.is_empty()).then_some(Arrangement::Between { targets })
+                }
+                (RelationKind::Flanking, Target::Entrance) => Some(Arrangement::NearEntrance),
+                (RelationKind::Flanking, t) => {
+                    cat(t).map(|target| Arrangement::Flanking { target })
+                }
+                (RelationKind::Under, t) => cat(t).map(|target| Arrangement::Under { target }),
+                (RelationKind::Behind, t) => cat(t).map(|target| Arrangement::Behind { target }),
+                (RelationKind::NextTo | RelationKind::Near, t @ Target::Mention(_)) => {
+                    cat(t).map(|target| Arrangement::Beside { target })
+                }
+                (RelationKind::With, t @ Target::Mention(_)) => cat(t).and_then(|target| {
+                    if is_seat(self.lex, &m.category) && is_table_like(self.lex, &target) {
+                        Some(Arrangement::Around { parent: target })
+                    } else if self.kb.placement(&m.category)
+                        == Some(&Place::Flanking(target.clone()))
+                    {
+                        Some(Arrangement::Flanking { target })
+                    } else {
+                        None
+                    }
+                }),
+                (RelationKind::AcrossFrom, Target::Entrance) => Some(Arrangement::AcrossFrom {
+                    target: "entrance".into(),
+                }),
+                (RelationKind::AcrossFrom, t) => {
+                    cat(t).map(|target| Arrangement::AcrossFrom { target })
+                }
+                (RelationKind::Along, Target::Wall) if count >= 2 => {
+                    Some(Arrangement::RowAlongWall)
+                }
+                (
+                    RelationKind::Against
+                    | RelationKind::Along
+                    | RelationKind::Near
+                    | RelationKind::NextTo,
+                    Target::Wall,
+                ) => Some(Arrangement::AgainstWall),
+                (RelationKind::In | RelationKind::Near | RelationKind::NextTo, Target::Corner) => {
+                    Some(Arrangement::Corner)
+                }
+                (RelationKind::Center, _) => Some(Arrangement::Center),
+                (
+                    RelationKind::Near
+                    | RelationKind::NextTo
+                    | RelationKind::In
+                    | RelationKind::Against,
+                    Target::Window,
+                ) => Some(Arrangement::NearWindow),
+                (
+                    RelationKind::Near | RelationKind::NextTo | RelationKind::In,
+                    Target::Entrance,
+                ) => Some(Arrangement::NearEntrance),
+                (RelationKind::BackOf, _) => Some(Arrangement::AcrossFrom {
+                    target: "entrance".into(),
+                }),
+                (RelationKind::FrontOf, _) => Some(Arrangement::FrontOfRoom),
+                (RelationKind::Above, t @ Target::Mention(_)) => {
+                    cat(t).map(|target| Arrangement::Above { target })
+                }
+                _ => None,
+            };
+            if a.is_some() {
+                return a;
+            }
+        }
+        None
+    }
+
+    /// The knowledge base's arrangement of a noun in this room (or anywhere).
+    pub(super) fn kb_arrangement(&self, noun: &str) -> Option<Arrangement> {
+        self.rt
+            .and_then(|r| r.item(noun))
+            .and_then(|i| i.place.as_ref())
+            .or_else(|| self.kb.placement(noun))
+            .map(place_to_arrangement)
+    }
+
+    pub(super) fn explicit(&mut self) {
+        let mentions: Vec<(usize, Mention)> =
+            self.mentions().map(|(i, m)| (i, m.clone())).collect();
+        for (_, m) in mentions.iter().filter(|(_, m)| m.negated) {
+            if !self.plan.excluded.contains(&m.category) {
+                self.plan.excluded.push(m.category.clone());
+            }
+        }
+        // Generic mentions that count specific ones: share the count out.
+        let mut share: BTreeMap<usize, (u32, bool)> = BTreeMap::new();
+        let mut skip: Vec<usize> = Vec::new();
+        for (i, m) in &mentions {
+            if m.negated || !m.generic || m.covers.is_empty() {
+                continue;
+            }
+            let (n, at_least) = self.count(*i, 0);
+            let k = m.covers.len() as u32;
+            for (j, c) in m.covers.iter().enumerate() {
+                let part = n / k + u32::from((j as u32) < n % k);
+                share.insert(*c, (part, at_least));
+            }
+            skip.push(*i);
+        }
+        for (i, m) in &mentions {
+            if m.negated || skip.contains(i) || self.excluded(&m.category) {
+                continue;
+            }
+            if !m.known && m.head.is_none() && !self.plan.unknown.contains(&m.category) {
+                self.plan.unknown.push(m.category.clone());
+            }
+            let (mut count, mut at_least) = self.count(*i, 0);
+            if let Some(&(n, a)) = share.get(i)
+                && m.count == Count::Several
+            {
+                count = n.max(1);
+                at_least = a;
+            }
+            let count = count.clamp(1, MAX_COUNT);
+            let support = m.support;
+            let description = self.describe(m, support);
+            let mut want = Want {
+                noun: m.category.clone(),
+                description,
+                count,
+                explicit: true,
+                at_least,
+                arrangement: Arrangement::Free,
+                height_m: None,
+                parent_instance: None,
+            };
+            match support {
+                Support::Floor => {
+                    want.arrangement = self
+                        .relation_arrangement(m, count)
+                        .or_else(|| self.kb_arrangement(&m.category))
+                        .unwrap_or(Arrangement::AgainstWall);
+                    self.plan.furniture.push(want);
+                }
+                Support::Wall => {
+                    want.arrangement = self.relation_arrangement(m, count).unwrap_or_else(|| {
+                        self.kb_arrangement(&m.category)
+                            .unwrap_or(Arrangement::Free)
+                    });
+                    want.height_m = self
+                        .rt
+                        .and_then(|r| r.item(&m.category))
+                        .and_then(|k| k.height);
+                    self.plan.wall.push(want);
+                }
+                Support::Ceiling => {
+                    want.arrangement = match self.relation_arrangement(m, count) {
+                        Some(a @ Arrangement::Above { .. }) => a,
+                        _ => self
+                            .kb_arrangement(&m.category)
+                            .filter(|a| matches!(a, Arrangement::Above { .. }))
+                            .unwrap_or(Arrangement::Free),
+                    };
+                    self.plan.ceiling.push(want);
+                }
+                Support::Surface => self.explicit_surface(m, want),
+            }
+        }
+    }
+
+    /// A small object: its parent furniture and how it lies there.
+    pub(super) fn explicit_surface(&mut self, m: &Mention, mut want: Want) {
+        let mentions = &self.reading.mentions;
+        let support = m
+            .relations
+            .iter()
+            .filter(|r| {
+                matches!(r.kind, RelationKind::On | RelationKind::In)
+                    || (r.kind == RelationKind::With && r.target.mention().is_some())
+            })
+            .min_by_key(|r| r.implied);
+        let mut parent = String::new();
+        if let Some(r) = support {
+            want.parent_instance = r.instance;
+            match r.target {
+                Target::Floor => parent = "floor".into(),
+                Target::Mention(j) => {
+                    // Nested small objects (pens in a pen holder on the desk): the furniture
+                    // at the bottom of the chain is the parent, the holder is the arrangement.
+                    let direct = mentions[j].category.clone();
+                    let mut k = j;
+                    for _ in 0..4 {
+                        if mentions[k].support != Support::Surface {
+                            break;
+                        }
+                        match mentions[k].parent() {
+                            Some(p) => k = p,
+                            None => break,
+                        }
+                    }
+                    if mentions[j].support == Support::Surface {
+                        want.arrangement = if r.kind == RelationKind::In || mentions[j].container {
+                            Arrangement::Inside { parent: direct }
+                        } else {
+                            Arrangement::On { parent: direct }
+                        };
+                        if mentions[k].support != Support::Surface {
+                            parent = mentions[k].category.clone();
+                        }
+                        want.parent_instance = None;
+                    } else {
+                        parent = direct.clone();
+                        if r.kind == RelationKind::In && mentions[j].container {
+                            want.arrangement = Arrangement::Inside { parent: direct };
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        if matches!(want.arrangement, Arrangement::Free) {
+            want.arrangement = match m.group.map(|g| g.kind) {
+                Some(GroupKind::Stack) => Arrangement::Stack,
+                Some(GroupKind::Pile | GroupKind::Mess) => Arrangement::Pile,
+                _ => Arrangement::Free,
+            };
+        }
+        let place_settings = matches!(m.per, Some(Per::Setting { .. }));
+        self.surface.push(SurfaceItem {
+            parent,
+            want,
+            place_settings,
+        });
+    }
+}
