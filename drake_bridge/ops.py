@@ -207,10 +207,15 @@ def op_collision_report(args):
     }
 
 
+from drake_bridge import projection, settle  # noqa: E402 - they use CACHE above
+
 OPS = {
     "ping": op_ping,
     "versions": op_versions,
     "load": op_load,
     "penetrations": op_penetrations,
     "collision_report": op_collision_report,
+    "project": projection.op_project,
+    "settle": settle.op_settle,
+    "simulate": settle.op_simulate,
 }
