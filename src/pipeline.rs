@@ -14,12 +14,14 @@ use serde::Serialize;
 use serde_json::json;
 
 use crate::assets::AssetError;
+use crate::eval::{self, EvalError, EvalOptions, Metrics};
 use crate::formats::FormatError;
 use crate::formats::scene_dir::{self, names};
 use crate::geometry::GeometryError;
 use crate::layout::{self, architecture};
 use crate::physics::collision;
-use crate::physics::{Bridge, BridgeError};
+use crate::physics::postprocess::{self, PostProcessOptions, PostProcessReport};
+use crate::physics::{Bridge, BridgeError, BridgePool, PhysicsError};
 use crate::prompt;
 use crate::scene::{ObjectKind, Pose, Scene, Support, sanitize_name};
 use crate::stages::{SceneState, starter};
@@ -54,6 +56,12 @@ pub enum PipelineError {
     /// The Drake bridge failed.
     #[error(transparent)]
     Bridge(#[from] BridgeError),
+    /// Post-processing (projection, settling) failed.
+    #[error(transparent)]
+    Physics(#[from] PhysicsError),
+    /// The metrics could not be computed or written.
+    #[error(transparent)]
+    Eval(#[from] EvalError),
     /// The written scene does not load or is not collision-free.
     #[error("scene check failed: {0}")]
     CheckFailed(String),
@@ -92,6 +100,10 @@ pub struct GenerateSummary {
     pub rust_penetrating_pairs: usize,
     /// Drake check, when run.
     pub check: Option<CheckSummary>,
+    /// What post-processing did (projections, settling, removals).
+    pub post_process: PostProcessReport,
+    /// The metrics written to `metrics.json`.
+    pub metrics: Metrics,
     /// Wall time per step, seconds.
     pub timings: Timings,
 }
@@ -229,6 +241,14 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
         build_scene(&opts.prompt, opts.seed, &package)
     })?;
 
+    // --- physics post-processing (projection, settling, fallen-object removal) ---
+    // Without the Drake check (`--no-check`) only the native projections run.
+    let pool = opts.drake_check.then(BridgePool::from_env);
+    let post_process = timed(&mut timings, "post_process", || {
+        postprocess::post_process(&mut state, pool.as_ref(), &PostProcessOptions::default())
+    })?;
+    // --- end of physics post-processing ---
+
     let rust_pairs = timed(&mut timings, "rust_collision_check", || {
         collision::posed_objects(&state.scene, &state.assets)
             .map(|objs| collision::penetrating_pairs(&objs, 1e-3))
@@ -257,6 +277,18 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
         None
     };
 
+    // --- metrics.json (the same code as `scenesmith eval`; STB needs the bridge) ---
+    let metrics = timed(&mut timings, "metrics", || {
+        eval::evaluate(
+            &state,
+            Some(staging.path()),
+            pool.as_ref(),
+            &EvalOptions::default(),
+        )
+    })?;
+    eval::write_metrics(staging.path(), &metrics)?;
+    // --- end of metrics ---
+
     let out = staging.commit()?;
     timings.insert("total".into(), t_total.elapsed().as_secs_f64());
     let mut per_kind = BTreeMap::new();
@@ -280,6 +312,8 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
         furnishing: reports,
         rust_penetrating_pairs: rust_pairs.len(),
         check,
+        post_process,
+        metrics,
         timings,
     })
 }

@@ -176,6 +176,8 @@ struct Piece {
     verts0: Vec<Vector3<f64>>,
     lo0: Vector3<f64>,
     hi0: Vector3<f64>,
+    /// Part of a fixed floor slab: left to the floor bound, never a pair row.
+    is_floor: bool,
 }
 
 struct Body {
@@ -204,6 +206,8 @@ struct Measured {
     rows: Vec<Row>,
     /// Deepest penetration per body pair involving a movable body.
     deepest: BTreeMap<(usize, usize), f64>,
+    /// Depth below the floor bound per movable body.
+    below_floor: BTreeMap<usize, f64>,
 }
 
 fn to_vec3(v: PVec) -> Vector3<f64> {
@@ -268,6 +272,7 @@ fn build_bodies(
                 verts0,
                 lo0,
                 hi0,
+                is_floor: false,
             });
         }
         if pieces.is_empty() {
@@ -318,6 +323,15 @@ fn measure(
 ) -> Measured {
     let mut rows = Vec::new();
     let mut deepest = BTreeMap::new();
+    let mut below_floor = BTreeMap::new();
+    if let Some(fz) = opts.floor_z {
+        for (i, b) in bodies.iter().enumerate().filter(|(_, b)| b.movable) {
+            let depth = fz - (b.lo0.z + offsets[i].z);
+            if depth > 0.0 {
+                below_floor.insert(i, depth);
+            }
+        }
+    }
     for i in 0..bodies.len() {
         for j in i + 1..bodies.len() {
             let (a, b) = (&bodies[i], &bodies[j]);
@@ -334,8 +348,8 @@ fn measure(
             ) {
                 continue;
             }
-            for pa in &a.pieces {
-                for pb in &b.pieces {
+            for pa in a.pieces.iter().filter(|p| !p.is_floor) {
+                for pb in b.pieces.iter().filter(|p| !p.is_floor) {
                     if !overlap(
                         &(pa.lo0 + oa),
                         &(pa.hi0 + oa),
@@ -405,11 +419,19 @@ fn measure(
             }
         }
     }
-    Measured { rows, deepest }
+    Measured {
+        rows,
+        deepest,
+        below_floor,
+    }
 }
 
 fn max_depth(m: &Measured) -> f64 {
-    m.deepest.values().copied().fold(0.0, f64::max)
+    m.deepest
+        .values()
+        .chain(m.below_floor.values())
+        .copied()
+        .fold(0.0, f64::max)
 }
 
 /// One QP step: returns per-body step offsets (zero for fixed bodies), or `None` when the
@@ -615,6 +637,13 @@ fn solve(
 ) -> (BTreeMap<String, Vector3<f64>>, ProjectionReport) {
     let t0 = Instant::now();
     let mut offsets = vec![Vector3::zeros(); bodies.len()];
+    if let Some(fz) = opts.floor_z {
+        for b in bodies.iter_mut().filter(|b| !b.free) {
+            for p in &mut b.pieces {
+                p.is_floor = p.hi0.z <= fz + 1e-6;
+            }
+        }
+    }
     let free_count = bodies.iter().filter(|b| b.free).count();
     match &opts.movable {
         Movable::Only(ids) => {
@@ -689,6 +718,12 @@ fn solve(
         .iter()
         .filter(|(_, d)| **d > opts.tolerance)
         .map(|((a, b), d)| (bodies[*a].id.clone(), bodies[*b].id.clone(), *d))
+        .chain(
+            last.below_floor
+                .iter()
+                .filter(|(_, d)| **d > opts.tolerance)
+                .map(|(i, d)| (bodies[*i].id.clone(), "floor".to_string(), *d)),
+        )
         .collect();
     unresolved.sort_by(|x, y| y.2.total_cmp(&x.2));
     let movable: Vec<usize> = (0..bodies.len()).filter(|i| bodies[*i].movable).collect();
