@@ -594,10 +594,22 @@ fn qp_step(
         return None;
     }
     let x = &solver.solution.x;
+    // A body no row mentions has its exact optimum at its start: return it there, rather than
+    // keep the interior-point method's last-digit noise.
+    let mut constrained = vec![false; bodies.len()];
+    for r in rows {
+        constrained[r.a] = true;
+        constrained[r.b] = true;
+    }
+    for (i, _) in &region_rows {
+        constrained[*i] = true;
+    }
     Some(
         var_of
             .iter()
-            .map(|v| match v {
+            .enumerate()
+            .map(|(i, v)| match v {
+                Some(_) if !constrained[i] && opts.floor_z.is_none_or(|fz| bodies[i].lo0.z >= fz) => -offsets[i],
                 Some(v) => Vector3::new(x[3 * v], x[3 * v + 1], x[3 * v + 2]),
                 None => Vector3::zeros(),
             })
