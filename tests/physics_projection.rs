@@ -41,10 +41,22 @@ fn pile() -> (SceneState, Vec<String>) {
         (&cube, 1.05, 1.05, 0.4),
         (&cube, 0.96, 1.04, 1.1),
     ] {
-        ids.push(place(&mut s, asset, ObjectKind::Manipuland, Pose::from_xyz_yaw(x, y, 0.0, yaw), floor()));
+        ids.push(place(
+            &mut s,
+            asset,
+            ObjectKind::Manipuland,
+            Pose::from_xyz_yaw(x, y, 0.0, yaw),
+            floor(),
+        ));
     }
     for (x, y) in [(2.0, 2.0), (0.5, 2.2)] {
-        ids.push(place(&mut s, &cube, ObjectKind::Manipuland, Pose::from_xyz_yaw(x, y, 0.0, 0.3), floor()));
+        ids.push(place(
+            &mut s,
+            &cube,
+            ObjectKind::Manipuland,
+            Pose::from_xyz_yaw(x, y, 0.0, 0.3),
+            floor(),
+        ));
     }
     (s, ids)
 }
@@ -59,15 +71,30 @@ fn native_projection_resolves_a_deep_pile_and_leaves_the_rest() {
         project_objects(&state, &free, &fixed, &ProjectionOptions::default()).unwrap();
     assert_eq!(report.status, ProjectionStatus::Converged, "{report:?}");
     apply_offsets(&mut state, &offsets);
-    assert!(max_penetration(&state) <= 1e-4, "{}", max_penetration(&state));
+    assert!(
+        max_penetration(&state) <= 1e-4,
+        "{}",
+        max_penetration(&state)
+    );
     for o in &state.scene.objects {
         let b = before.object(&o.id).unwrap();
-        assert!(o.world_from_object.angle_to(&b.world_from_object) < 1e-12, "{} turned", o.id);
+        assert!(
+            o.world_from_object.angle_to(&b.world_from_object) < 1e-12,
+            "{} turned",
+            o.id
+        );
         // Nothing below the floor.
-        assert!(o.world_from_object.translation().z >= -1e-9, "{} sank", o.id);
+        assert!(
+            o.world_from_object.translation().z >= -1e-9,
+            "{} sank",
+            o.id
+        );
     }
     for far in &ids[5..] {
-        let (a, b) = (state.scene.object(far).unwrap(), before.object(far).unwrap());
+        let (a, b) = (
+            state.scene.object(far).unwrap(),
+            before.object(far).unwrap(),
+        );
         let moved = (a.world_from_object.translation() - b.world_from_object.translation()).norm();
         assert!(moved <= 1e-4, "{far} moved {moved} m");
     }
@@ -101,7 +128,12 @@ fn native_projection_options_hold() {
 
     // A region: the first cube's origin must stay left of x = 1.0 (it starts on the line).
     let mut regions = BTreeMap::new();
-    regions.insert(ids[0].clone(), XyRegion { halfplanes: vec![[1.0, 0.0, 1.0]] });
+    regions.insert(
+        ids[0].clone(),
+        XyRegion {
+            halfplanes: vec![[1.0, 0.0, 1.0]],
+        },
+    );
     let reg = ProjectionOptions {
         regions,
         ..ProjectionOptions::default()
@@ -117,13 +149,31 @@ fn xy_only_slides_a_chair_out_from_under_a_table() {
     // A vertical penetration normal (seat under the top) would never slide the chair out.
     let mut state = room(4.0, 4.0);
     let table = state
-        .build_asset(&scenesmith::assets::procedural::AssetRequest::new("table", 1))
+        .build_asset(&scenesmith::assets::procedural::AssetRequest::new(
+            "table", 1,
+        ))
         .unwrap();
     let chair = state
-        .build_asset(&scenesmith::assets::procedural::AssetRequest::new("chair", 1))
+        .build_asset(&scenesmith::assets::procedural::AssetRequest::new(
+            "chair", 1,
+        ))
         .unwrap();
-    let t = state.add_object("table", ObjectKind::Furniture, "room_0", &table, Pose::from_xyz_yaw(2.0, 2.0, 0.0, 0.0), floor());
-    let c = state.add_object("chair", ObjectKind::Furniture, "room_0", &chair, Pose::from_xyz_yaw(2.1, 2.05, 0.0, 0.0), floor());
+    let t = state.add_object(
+        "table",
+        ObjectKind::Furniture,
+        "room_0",
+        &table,
+        Pose::from_xyz_yaw(2.0, 2.0, 0.0, 0.0),
+        floor(),
+    );
+    let c = state.add_object(
+        "chair",
+        ObjectKind::Furniture,
+        "room_0",
+        &chair,
+        Pose::from_xyz_yaw(2.1, 2.05, 0.0, 0.0),
+        floor(),
+    );
     let opts = ProjectionOptions {
         xy_only: true,
         ..ProjectionOptions::default()
@@ -158,11 +208,19 @@ fn drake_and_native_projection_agree_on_the_same_pile() {
             o.world_from_object = *p;
         }
     }
-    assert!(max_penetration(&by_drake) <= 2e-4, "{}", max_penetration(&by_drake));
+    assert!(
+        max_penetration(&by_drake) <= 2e-4,
+        "{}",
+        max_penetration(&by_drake)
+    );
 
     let (free, fixed) = free_and_fixed(&state);
-    let (_, native) = project_objects(&state, &free, &fixed, &ProjectionOptions::default()).unwrap();
-    eprintln!("native {native:?}\ndrake {} {} {} {:?}", drake.mean_displacement_m, drake.max_penetration_m, drake.wall_s, drake.attempts);
+    let (_, native) =
+        project_objects(&state, &free, &fixed, &ProjectionOptions::default()).unwrap();
+    eprintln!(
+        "native {native:?}\ndrake {} {} {} {:?}",
+        drake.mean_displacement_m, drake.max_penetration_m, drake.wall_s, drake.attempts
+    );
     // Same problem, same objective: the native answer moves things about as far as Drake's.
     assert!(
         native.mean_displacement_m <= 1.25 * drake.mean_displacement_m + 0.005,

@@ -609,7 +609,11 @@ fn qp_step(
             .iter()
             .enumerate()
             .map(|(i, v)| match v {
-                Some(_) if !constrained[i] && opts.floor_z.is_none_or(|fz| bodies[i].lo0.z >= fz) => -offsets[i],
+                Some(_)
+                    if !constrained[i] && opts.floor_z.is_none_or(|fz| bodies[i].lo0.z >= fz) =>
+                {
+                    -offsets[i]
+                }
                 Some(v) => Vector3::new(x[3 * v], x[3 * v + 1], x[3 * v + 2]),
                 None => Vector3::zeros(),
             })

@@ -19,7 +19,7 @@ use crate::scene::Pose;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ContactModel {
-    /// Compliant hydroelastic on free bodies, rigid on welded ones (rests exactly; default).
+    /// Compliant hydroelastic on every geometry (rests exactly; default).
     Hydroelastic,
     /// Drake's point contact (what the scene files give under Drake's default plant).
     Point,
@@ -30,8 +30,10 @@ pub enum ContactModel {
 pub struct ContactOptions {
     /// Contact model.
     pub model: ContactModel,
-    /// Hydroelastic modulus of the compliant free bodies, Pa.
+    /// Hydroelastic modulus of every geometry, Pa.
     pub hydroelastic_modulus: f64,
+    /// Hunt-Crossley dissipation is raised to at least this, s/m (hydroelastic only).
+    pub min_dissipation: f64,
 }
 
 impl Default for ContactOptions {
@@ -39,6 +41,7 @@ impl Default for ContactOptions {
         ContactOptions {
             model: ContactModel::Hydroelastic,
             hydroelastic_modulus: 1e8,
+            min_dissipation: 10.0,
         }
     }
 }
@@ -150,6 +153,7 @@ pub fn request_args(
         "contact": {
             "model": opts.contact.model,
             "hydroelastic_modulus": opts.contact.hydroelastic_modulus,
+            "min_dissipation": opts.contact.min_dissipation,
         },
         "floor_z": opts.floor_z,
     });

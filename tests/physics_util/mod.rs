@@ -44,10 +44,15 @@ pub fn block(id: &str, shape: Shape, material_name: &str) -> Asset {
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
             let pts: Vec<[f64; 3]> = (0..40)
                 .map(|_| {
-                    let (u, v): (f64, f64) = (rng.random_range(-1.0..1.0), rng.random_range(0.0..1.0));
+                    let (u, v): (f64, f64) =
+                        (rng.random_range(-1.0..1.0), rng.random_range(0.0..1.0));
                     let phi = std::f64::consts::TAU * v;
                     let s = (1.0 - u * u).sqrt();
-                    [radii[0] * s * phi.cos(), radii[1] * s * phi.sin(), radii[2] * (u + 1.0)]
+                    [
+                        radii[0] * s * phi.cos(),
+                        radii[1] * s * phi.sin(),
+                        radii[2] * (u + 1.0),
+                    ]
                 })
                 .collect();
             link.add_collision(ConvexPiece::from_points(&pts).unwrap());
@@ -114,7 +119,14 @@ pub fn place(
 ) -> String {
     let asset_id = state.insert_asset(asset.clone());
     let category = asset.category.clone();
-    state.add_object(&category, kind, "room_0", &asset_id, world_from_object, support)
+    state.add_object(
+        &category,
+        kind,
+        "room_0",
+        &asset_id,
+        world_from_object,
+        support,
+    )
 }
 
 /// On the floor of `room_0`.
