@@ -254,75 +254,95 @@ def op_project(args):
     if initial_depth <= tolerance or not movable:
         return finish(q0, "none")
 
-    # Candidate pairs: bounding boxes within candidate_distance, one movable, not filtered,
-    # and not the floor (handled by the bound).
     inspector = scene.scene_graph.model_inspector()
-    fixed_floor = {id(g) for g in geoms
-                   if floor_z is not None and g.body.index() not in all_idx
-                   and g.hi[2] <= floor_z + 1e-6}
-    pairs = []
-    for i, a in enumerate(geoms):
-        for b in geoms[i + 1:]:
-            if a.body.index() not in movable_idx and b.body.index() not in movable_idx:
-                continue
-            if a.body.model_instance() == b.body.model_instance():
-                continue
-            if id(a) in fixed_floor or id(b) in fixed_floor:
-                continue
-            if np.any(a.lo - candidate_distance > b.hi) or np.any(b.lo - candidate_distance > a.hi):
-                continue
-            if inspector.CollisionFiltered(a.gid, b.gid):
-                continue
-            pairs.append((a.gid, b.gid))
-    report["pairs"] = len(pairs)
 
-    prog = MathematicalProgram()
-    q = prog.NewContinuousVariables(len(q0), "q")
-    prog.AddBoundingBoxConstraint(lb, ub, q)
+    def candidates(q):
+        """Geometry pairs within candidate_distance at q: one movable, not filtered, not the
+        floor (the bound handles it)."""
+        plant.SetPositions(pctx, q)
+        gs = _geometries(scene, pctx)
+        floor_ids = {id(g) for g in gs if floor_z is not None and g.body.index() not in all_idx
+                     and g.hi[2] <= floor_z + 1e-6}
+        out = set()
+        for i, a in enumerate(gs):
+            for b in gs[i + 1:]:
+                if a.body.index() not in movable_idx and b.body.index() not in movable_idx:
+                    continue
+                if a.body.model_instance() == b.body.model_instance():
+                    continue
+                if id(a) in floor_ids or id(b) in floor_ids:
+                    continue
+                if np.any(a.lo - candidate_distance > b.hi) or np.any(b.lo - candidate_distance > a.hi):
+                    continue
+                if inspector.CollisionFiltered(a.gid, b.gid):
+                    continue
+                out.add((a.gid, b.gid) if a.gid.get_value() < b.gid.get_value() else (b.gid, a.gid))
+        return out
+
     w = np.zeros(len(q0))
     for b in movable:
         w[trans[b.index()]:trans[b.index()] + 3] = 1.0
-    prog.AddQuadraticErrorCost(np.diag(w), q0, q)
-    for gid_a, gid_b in pairs:
-        prog.AddConstraint(DistanceConstraint(plant, (gid_a, gid_b), pctx, min_distance, np.inf), q)
-    for name, rows in regions.items():
-        for b in by_instance[name]:
-            if b.index() not in movable_idx:
-                continue
-            i = trans[b.index()]
-            prog.AddLinearConstraint(rows[:, :2], np.full(len(rows), -np.inf), rows[:, 2],
-                                     q[i:i + 2])
-    q_start = np.clip(q0, lb, ub)
 
+    def program(pairs):
+        prog = MathematicalProgram()
+        q = prog.NewContinuousVariables(len(q0), "q")
+        prog.AddBoundingBoxConstraint(lb, ub, q)
+        prog.AddQuadraticErrorCost(np.diag(w), q0, q)
+        for gid_a, gid_b in sorted(pairs, key=lambda p: (p[0].get_value(), p[1].get_value())):
+            prog.AddConstraint(DistanceConstraint(plant, (gid_a, gid_b), pctx, min_distance,
+                                                  np.inf), q)
+        for name, rows in regions.items():
+            for b in by_instance[name]:
+                if b.index() not in movable_idx:
+                    continue
+                i = trans[b.index()]
+                prog.AddLinearConstraint(rows[:, :2], np.full(len(rows), -np.inf), rows[:, 2],
+                                         q[i:i + 2])
+        return prog, q
+
+    q_start = np.clip(q0, lb, ub)
+    pairs = candidates(q_start)
     chain = {"auto": ["snopt", "ipopt"], "snopt": ["snopt"], "ipopt": ["ipopt"],
              "push_out": []}[solver_choice]
     for name in chain:
-        left = time_limit - (time.perf_counter() - t0)
-        if left <= 0:
-            break
         solver = SnoptSolver() if name == "snopt" else IpoptSolver()
         if not (solver.available() and solver.enabled()):
             report["attempts"].append({"solver": name, "status": "unavailable"})
             continue
-        options = SolverOptions()
-        if name == "ipopt":
-            options.SetOption(IpoptSolver.id(), "max_wall_time", float(left))
-            options.SetOption(IpoptSolver.id(), "print_level", 0)
-        t_solve = time.perf_counter()
-        status, ok, q_sol = _solve_with_deadline(solver, prog, q, q_start, options, left)
-        attempt = {"solver": name, "status": status, "success": ok,
-                   "seconds": time.perf_counter() - t_solve}
-        report["attempts"].append(attempt)
-        if q_sol is None or not np.all(np.isfinite(q_sol)):
-            continue
-        q_sol = np.clip(q_sol, lb, ub)
-        plant.SetPositions(pctx, q_sol)
-        depth = _max_depth(_penetrations(scene, ctx, movable_idx))
-        attempt["max_penetration_m"] = depth
-        if depth <= tolerance:
-            return finish(q_sol, name)
+        # Pairs are chosen at the start; a solution that moves bodies into new contact is
+        # re-solved from there with those pairs added (a few rounds at most).
+        q_from = q_start
+        for _ in range(6):
+            left = time_limit - (time.perf_counter() - t0)
+            if left <= 0:
+                break
+            options = SolverOptions()
+            if name == "ipopt":
+                options.SetOption(IpoptSolver.id(), "max_wall_time", float(left))
+                options.SetOption(IpoptSolver.id(), "print_level", 0)
+            prog, q = program(pairs)
+            t_solve = time.perf_counter()
+            status, ok, q_sol = _solve_with_deadline(solver, prog, q, q_from, options, left)
+            attempt = {"solver": name, "status": status, "success": ok, "pairs": len(pairs),
+                       "seconds": time.perf_counter() - t_solve}
+            report["attempts"].append(attempt)
+            if q_sol is None or not np.all(np.isfinite(q_sol)):
+                break
+            q_sol = np.clip(q_sol, lb, ub)
+            plant.SetPositions(pctx, q_sol)
+            depth = _max_depth(_penetrations(scene, ctx, movable_idx))
+            attempt["max_penetration_m"] = depth
+            if depth <= tolerance:
+                report["pairs"] = len(pairs)
+                return finish(q_sol, name)
+            more = candidates(q_sol) - pairs
+            if not more:
+                break
+            pairs |= more
+            q_from = q_sol
         plant.SetPositions(pctx, q0)
 
+    report["pairs"] = len(pairs)
     return finish(_push_out(scene, ctx, movable, trans, lb, ub, q0, min_distance, tolerance,
                             xy_only, report), "push_out")
 

@@ -78,8 +78,7 @@ def instance_name(plant, body):
 
 
 def _assign_contact(plant, scene_graph, cfg):
-    """Makes every proximity geometry compliant hydroelastic (friction and dissipation from the
-    files are kept).
+    """Makes every proximity geometry compliant hydroelastic (friction from the files is kept).
 
     Hunt-Crossley dissipation is raised to at least `min_dissipation`: at the material table's
     1 s/m a cube dropped 2 cm onto a table top kept rocking (3 mm/s, 0.1 rad/s) for good; from

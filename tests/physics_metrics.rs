@@ -21,12 +21,36 @@ fn no_stb() -> EvalOptions {
 fn col_counts_a_known_penetration() {
     let mut state = room(3.0, 3.0);
     let cube = block("cube", Shape::Box([0.2, 0.2, 0.2]), "wood");
-    place(&mut state, &cube, ObjectKind::Furniture, Pose::from_xyz(1.0, 1.0, 0.0), floor());
+    place(
+        &mut state,
+        &cube,
+        ObjectKind::Furniture,
+        Pose::from_xyz(1.0, 1.0, 0.0),
+        floor(),
+    );
     // 5 mm into the first cube along x.
-    place(&mut state, &cube, ObjectKind::Furniture, Pose::from_xyz(1.195, 1.0, 0.0), floor());
-    place(&mut state, &cube, ObjectKind::Furniture, Pose::from_xyz(2.0, 2.0, 0.0), floor());
+    place(
+        &mut state,
+        &cube,
+        ObjectKind::Furniture,
+        Pose::from_xyz(1.195, 1.0, 0.0),
+        floor(),
+    );
+    place(
+        &mut state,
+        &cube,
+        ObjectKind::Furniture,
+        Pose::from_xyz(2.0, 2.0, 0.0),
+        floor(),
+    );
     // 3 mm into the west wall (inner face at x = 0).
-    place(&mut state, &cube, ObjectKind::Furniture, Pose::from_xyz(0.097, 2.0, 0.5), floor());
+    place(
+        &mut state,
+        &cube,
+        ObjectKind::Furniture,
+        Pose::from_xyz(0.097, 2.0, 0.5),
+        floor(),
+    );
     let m = evaluate(&state, None, None, &no_stb()).unwrap();
     assert_eq!(m.col.objects, 4);
     assert_eq!(m.col.colliding, vec!["block_0", "block_1", "block_3"]);
@@ -64,13 +88,23 @@ fn nav_sees_a_room_cut_in_two_and_oob_sees_an_object_through_the_wall() {
     // Left part x in [0.25, 1.1], right part [1.9, 3.75]; both 2.5 m deep.
     let (left, right) = (0.85 * 2.5, 1.85 * 2.5);
     assert!((room.largest_region_m2 - right).abs() < 0.02, "{room:?}");
-    assert!((cut.nav.ratio - right / (left + right)).abs() < 0.01, "{:?}", cut.nav);
+    assert!(
+        (cut.nav.ratio - right / (left + right)).abs() < 0.01,
+        "{:?}",
+        cut.nav
+    );
     assert!(cut.nav.ratio < 1.0);
     assert_eq!(cut.oob.outside.len(), 0);
 
     // Half of a cube beyond the east wall.
     let cube = block("cube", Shape::Box([0.2, 0.2, 0.2]), "wood");
-    let out = place(&mut state, &cube, ObjectKind::Furniture, Pose::from_xyz(4.0, 1.5, 0.0), floor());
+    let out = place(
+        &mut state,
+        &cube,
+        ObjectKind::Furniture,
+        Pose::from_xyz(4.0, 1.5, 0.0),
+        floor(),
+    );
     let m = evaluate(&state, None, None, &no_stb()).unwrap();
     assert_eq!(m.oob.outside, vec![out]);
     assert!((m.oob.percent - 100.0 / 7.0).abs() < 1e-9);
@@ -81,8 +115,20 @@ fn stb_flags_the_object_that_falls_and_prompt_coverage_counts() {
     let mut state = room(3.0, 3.0);
     state.scene.provenance.prompt = "A room with two blocks and a table, but no chair.".into();
     let cube = block("cube", Shape::Box([0.1, 0.1, 0.1]), "wood");
-    place(&mut state, &cube, ObjectKind::Manipuland, Pose::from_xyz(1.0, 1.0, 0.0), floor());
-    place(&mut state, &cube, ObjectKind::Manipuland, Pose::from_xyz(1.5, 1.0, 0.0), floor());
+    place(
+        &mut state,
+        &cube,
+        ObjectKind::Manipuland,
+        Pose::from_xyz(1.0, 1.0, 0.0),
+        floor(),
+    );
+    place(
+        &mut state,
+        &cube,
+        ObjectKind::Manipuland,
+        Pose::from_xyz(1.5, 1.0, 0.0),
+        floor(),
+    );
     // A stick standing on one edge, leaning 26 degrees: it falls over.
     let stick = block("stick", Shape::Box([0.04, 0.04, 0.5]), "wood");
     let fallen = place(
@@ -121,7 +167,16 @@ fn eval_writes_metrics_and_generate_writes_them_too() {
     let root = tempfile::tempdir().unwrap();
     let out = root.path().join("scene");
     let prompt = dev_prompt("object_density_07");
-    let g = scenesmith(&["generate", &prompt, "--out", out.to_str().unwrap(), "--json"], &[]);
+    let g = scenesmith(
+        &[
+            "generate",
+            &prompt,
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ],
+        &[],
+    );
     assert!(g.status.success(), "{}", text(&g));
     let summary: serde_json::Value = serde_json::from_slice(&g.stdout).unwrap();
     let written: serde_json::Value =
@@ -129,7 +184,11 @@ fn eval_writes_metrics_and_generate_writes_them_too() {
     assert_eq!(summary["metrics"], written);
     assert_eq!(written["col"]["percent"], 0.0);
     assert_eq!(written["stb"]["percent"], 100.0, "{}", written["stb"]);
-    assert!(summary["post_process"]["manipuland"]["settle"].as_array().is_some());
+    assert!(
+        summary["post_process"]["manipuland"]["settle"]
+            .as_array()
+            .is_some()
+    );
 
     std::fs::remove_file(out.join("metrics.json")).unwrap();
     let e = scenesmith(&["eval", out.to_str().unwrap(), "--no-stb"], &[]);
@@ -143,7 +202,14 @@ fn eval_writes_metrics_and_generate_writes_them_too() {
     assert_eq!(again["col"], written["col"]);
     assert!(again["stb"].is_null());
 
-    let bad = scenesmith(&["eval", root.path().join("nothing").to_str().unwrap()], &[]);
+    let bad = scenesmith(
+        &["eval", root.path().join("nothing").to_str().unwrap()],
+        &[],
+    );
     assert_eq!(bad.status.code(), Some(1));
-    assert!(String::from_utf8_lossy(&bad.stderr).contains("scene.json"), "{}", text(&bad));
+    assert!(
+        String::from_utf8_lossy(&bad.stderr).contains("scene.json"),
+        "{}",
+        text(&bad)
+    );
 }

@@ -647,6 +647,33 @@ fn push_out_step(bodies: &[Body], rows: &[Row], opts: &ProjectionOptions) -> Vec
     step
 }
 
+/// After convergence the early, slack-heavy steps may have pushed objects further than
+/// needed: re-solve around the feasible point (pairs apart may close up to the clearance) and
+/// keep each step only while it lowers the cost and stays within the tolerance.
+fn polish(bodies: &[Body], offsets: &mut [Vector3<f64>], opts: &ProjectionOptions) {
+    let cost = |o: &[Vector3<f64>]| -> f64 {
+        bodies
+            .iter()
+            .zip(o)
+            .filter(|(b, _)| b.movable)
+            .map(|(_, d)| d.norm_squared())
+            .sum()
+    };
+    for _ in 0..5 {
+        let trust = opts.trust_region;
+        let m = measure(bodies, offsets, opts, 2.0 * trust + opts.clearance);
+        let Some(step) = qp_step(bodies, offsets, &m.rows, opts, trust) else {
+            return;
+        };
+        let trial: Vec<Vector3<f64>> = offsets.iter().zip(&step).map(|(o, s)| o + s).collect();
+        let gain = cost(offsets) - cost(&trial);
+        if gain <= 1e-10 || max_depth(&measure(bodies, &trial, opts, 0.0)) > opts.tolerance {
+            return;
+        }
+        offsets.copy_from_slice(&trial);
+    }
+}
+
 fn solve(
     bodies: &mut [Body],
     opts: &ProjectionOptions,
@@ -696,6 +723,7 @@ fn solve(
             let depth = max_depth(&m);
             if depth <= opts.tolerance {
                 status = ProjectionStatus::Converged;
+                polish(bodies, &mut offsets, opts);
                 break;
             }
             if iterations >= opts.max_iterations {
