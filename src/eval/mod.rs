@@ -69,9 +69,10 @@ pub struct StabilityOptions {
     /// Contact configuration.
     pub contact: ContactOptions,
     /// End the simulation early once every free body has stayed below `rest_speed` and
-    /// `rest_angular_speed` for `rest_time`; the motion the rest of the duration could still
-    /// add at those speeds is then added to every object's displacement and rotation, so the
-    /// early stop can only make STB stricter.
+    /// `rest_angular_speed` for `rest_time`. The stable/unstable decision then adds to every
+    /// object's displacement and rotation what the rest of the duration could still add at
+    /// those speeds (so the early stop can only make STB stricter); MD, XD and MR report the
+    /// motion actually simulated.
     pub stop_at_rest: bool,
     /// Rest speed for the early stop, m/s.
     pub rest_speed: f64,
@@ -90,8 +91,8 @@ impl Default for StabilityOptions {
             max_rotation_rad: 0.1,
             contact: ContactOptions::default(),
             stop_at_rest: true,
-            rest_speed: 1e-4,
-            rest_angular_speed: 1e-3,
+            rest_speed: 5e-4,
+            rest_angular_speed: 5e-3,
             rest_time: 0.5,
         }
     }
@@ -156,7 +157,8 @@ pub struct Col {
     pub pairs: Vec<(String, String, f64)>,
 }
 
-/// An object that failed the stability test.
+/// An object that failed the stability test (after an early stop, with the remaining-time
+/// bound added).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Unstable {
     /// Object id.
@@ -178,7 +180,7 @@ pub struct Stability {
     pub stable: usize,
     /// STB: percent stable.
     pub percent: f64,
-    /// MD: mean displacement, mm.
+    /// MD: mean displacement over the simulated time, mm.
     pub md_mm: f64,
     /// XD: max displacement, m.
     pub xd_m: f64,
@@ -310,10 +312,10 @@ pub fn stability(
     let mut unstable = Vec::new();
     let (mut sum_d, mut sum_r, mut max_d) = (0.0, 0.0, 0.0f64);
     for (id, m) in &result.motion {
+        sum_d += m.displacement_m;
+        sum_r += m.rotation_rad;
+        max_d = max_d.max(m.displacement_m);
         let (d, r) = (m.displacement_m + extra_d, m.rotation_rad + extra_r);
-        sum_d += d;
-        sum_r += r;
-        max_d = max_d.max(d);
         if !(d < opts.max_displacement_m && r < opts.max_rotation_rad) {
             unstable.push(Unstable {
                 id: id.clone(),
