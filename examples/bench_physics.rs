@@ -32,9 +32,10 @@ use scenesmith::physics::projection::{ProjectionOptions, apply_offsets, project_
 use scenesmith::physics::settle::{
     ContactModel, ContactOptions, SettleOptions, parse_result, request_args,
 };
-use scenesmith::pipeline::{GenerateOptions, build_scene, generate};
+use scenesmith::pipeline::{BackendChoice, GenerateOptions, build_scene, generate};
 use scenesmith::scene::{ObjectKind, Pose};
 use scenesmith::stages::SceneState;
+use scenesmith::stages::run::Backend;
 
 struct Args {
     parts: Vec<String>,
@@ -112,7 +113,8 @@ fn mean_displacement(a: &SceneState, b: &SceneState, ids: &[String]) -> f64 {
 /// Every free object of a generated room moved by up to 4 cm in XY (and small objects up to
 /// 1 cm down), so objects overlap each other, walls and their supports.
 fn jittered(prompt: &str, seed: u64) -> SceneState {
-    let (mut state, _) = build_scene(prompt, seed, "bench").expect("dev prompt builds");
+    let (mut state, _) =
+        build_scene(prompt, seed, "bench", &Backend::Builtin).expect("dev prompt builds");
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     for o in &mut state.scene.objects {
         if o.kind == ObjectKind::Architecture || o.welded {
@@ -364,7 +366,7 @@ fn settle_part(pool: &BridgePool) {
     .collect();
     rooms.push(("~80-object library".into(), BIG_ROOM.into()));
     for (name, prompt) in rooms {
-        let (mut state, _) = build_scene(&prompt, 0, "bench").expect("builds");
+        let (mut state, _) = build_scene(&prompt, 0, "bench", &Backend::Builtin).expect("builds");
         let objects = state
             .scene
             .objects
@@ -426,7 +428,7 @@ fn rooms_part(a: &Args) {
     let mut sized: Vec<(usize, (String, String))> = prompts
         .drain(..)
         .map(|p| {
-            let n = build_scene(&p.1, 0, "count")
+            let n = build_scene(&p.1, 0, "count", &Backend::Builtin)
                 .map(|(s, _)| s.scene.objects.len())
                 .unwrap_or(0);
             (n, p)
@@ -445,6 +447,8 @@ fn rooms_part(a: &Args) {
             seed: 0,
             out,
             drake_check: true,
+            backend: BackendChoice::Builtin,
+            resume: false,
         });
         let s = match r {
             Ok(s) => s,

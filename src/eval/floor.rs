@@ -10,7 +10,7 @@ use geo::{
 };
 use serde::{Deserialize, Serialize};
 
-use crate::physics::collision::{PosedObject, to_parry_pose};
+use crate::physics::collision::PosedObject;
 use crate::scene::{ObjectKind, Scene};
 
 /// NAV of one room.
@@ -65,17 +65,7 @@ fn ring(points: &[[f64; 2]]) -> Polygon<f64> {
 fn piece_vertices(o: &PosedObject) -> Vec<Vec<[f64; 3]>> {
     o.pieces
         .iter()
-        .map(|(shape, world_from_link)| {
-            let pose = to_parry_pose(world_from_link);
-            shape
-                .points()
-                .iter()
-                .map(|v| {
-                    let w = pose.transform_point(*v);
-                    [w.x, w.y, w.z]
-                })
-                .collect()
-        })
+        .map(|p| p.vertices.iter().map(|v| [v.x, v.y, v.z]).collect())
         .collect()
 }
 

@@ -28,12 +28,12 @@ use clarabel::solver::{
     DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
 };
 use nalgebra::{Point3, Vector3};
-use parry3d_f64::math::{Pose as PPose, Rotation as PRot, Vector as PVec};
+use parry3d_f64::math::{Pose as PPose, Vector as PVec};
 use parry3d_f64::shape::ConvexPolyhedron;
 use serde::Serialize;
 
 use super::PhysicsError;
-use super::collision::posed_objects;
+use super::collision::{PosedPiece, posed_objects, sat_penetration};
 use crate::scene::Pose;
 use crate::stages::SceneState;
 
@@ -170,9 +170,10 @@ pub struct ProjectionReport {
 }
 
 struct Piece {
+    /// The hull in world coordinates at the start (parry's GJK for pieces that are apart).
     shape: ConvexPolyhedron,
-    rotation: PRot,
-    translation0: Vector3<f64>,
+    /// The same with the axes of the exact separating-axis test (pieces that overlap).
+    posed: PosedPiece,
     verts0: Vec<Vector3<f64>>,
     lo0: Vector3<f64>,
     hi0: Vector3<f64>,
@@ -224,6 +225,17 @@ fn bounds_of(points: &[Vector3<f64>]) -> (Vector3<f64>, Vector3<f64>) {
     (lo, hi)
 }
 
+/// `piece` moved by `offset`.
+fn shifted(piece: &PosedPiece, offset: &Vector3<f64>) -> PosedPiece {
+    let mut p = piece.clone();
+    for v in &mut p.vertices {
+        *v += offset;
+    }
+    p.lo += offset;
+    p.hi += offset;
+    p
+}
+
 fn overlap(
     alo: &Vector3<f64>,
     ahi: &Vector3<f64>,
@@ -256,22 +268,23 @@ fn build_bodies(
         let is_free = free_set.contains(obj.id.as_str()) && !p.is_static;
         let mut pieces = Vec::new();
         let mut all = Vec::new();
-        for (shape, world_from_link) in p.pieces {
-            let pp = super::collision::to_parry_pose(&world_from_link);
-            let verts0: Vec<Vector3<f64>> = shape
-                .points()
+        for posed in p.pieces {
+            let points: Vec<PVec> = posed
+                .vertices
                 .iter()
-                .map(|v| to_vec3(pp.transform_point(*v)))
+                .map(|v| PVec::new(v.x, v.y, v.z))
                 .collect();
-            let (lo0, hi0) = bounds_of(&verts0);
+            let Some(shape) = ConvexPolyhedron::from_convex_hull(&points) else {
+                continue;
+            };
+            let verts0 = posed.vertices.clone();
             all.extend_from_slice(&verts0);
             pieces.push(Piece {
                 shape,
-                rotation: pp.rotation,
-                translation0: to_vec3(pp.translation),
+                lo0: posed.lo,
+                hi0: posed.hi,
+                posed,
                 verts0,
-                lo0,
-                hi0,
                 is_floor: false,
             });
         }
@@ -359,21 +372,38 @@ fn measure(
                     ) {
                         continue;
                     }
-                    let ta = pa.translation0 + oa;
-                    let tb = pb.translation0 + ob;
-                    let pose_a = PPose::from_parts(PVec::new(ta.x, ta.y, ta.z), pa.rotation);
-                    let pose_b = PPose::from_parts(PVec::new(tb.x, tb.y, tb.z), pb.rotation);
-                    let Ok(Some(c)) =
-                        parry3d_f64::query::contact(&pose_a, &pa.shape, &pose_b, &pb.shape, margin)
-                    else {
-                        continue;
+                    // Overlapping pieces: exact depth and direction by the separating-axis
+                    // test (parry's EPA is unreliable for deep overlaps); pieces apart: GJK.
+                    let overlap_dir = if overlap(
+                        &(pa.lo0 + oa),
+                        &(pa.hi0 + oa),
+                        &(pb.lo0 + ob),
+                        &(pb.hi0 + ob),
+                        0.0,
+                    ) {
+                        sat_penetration(&shifted(&pa.posed, &oa), &shifted(&pb.posed, &ob))
+                    } else {
+                        None
                     };
-                    let d = c.dist;
+                    let (d, normal) = match overlap_dir {
+                        Some((depth, axis)) => (-depth, axis),
+                        None => {
+                            let pose_a = PPose::from_translation(PVec::new(oa.x, oa.y, oa.z));
+                            let pose_b = PPose::from_translation(PVec::new(ob.x, ob.y, ob.z));
+                            let Ok(Some(c)) = parry3d_f64::query::contact(
+                                &pose_a, &pa.shape, &pose_b, &pb.shape, margin,
+                            ) else {
+                                continue;
+                            };
+                            // Touching counts as apart here; the SAT saw no overlap.
+                            (c.dist.max(0.0), to_vec3(c.normal1))
+                        }
+                    };
                     if d < 0.0 {
                         let e = deepest.entry((i, j)).or_insert(0.0f64);
                         *e = e.max(-d);
                     }
-                    let mut n = to_vec3(c.normal1);
+                    let mut n = normal;
                     let mut d_row = d;
                     let target = if d < -opts.tolerance {
                         opts.clearance
