@@ -230,3 +230,42 @@ fn drake_and_native_projection_agree_on_the_same_pile() {
     );
     assert!(native.max_penetration_m <= 1e-4);
 }
+
+#[test]
+fn nearly_coincident_identical_boxes_are_separated() {
+    // Deep overlaps of identical boxes are where an EPA-based depth goes wrong; the projection
+    // uses the exact separating-axis depth for overlapping pieces.
+    let mut state = room(3.0, 3.0);
+    let cube = block("cube", Shape::Box([0.2, 0.2, 0.2]), "wood");
+    for (x, y, yaw) in [
+        (1.0, 1.0, 0.0),
+        (1.01, 1.005, 0.0),
+        (1.0, 1.0, 0.3),
+        (1.02, 0.99, 0.0),
+    ] {
+        place(
+            &mut state,
+            &cube,
+            ObjectKind::Furniture,
+            Pose::from_xyz_yaw(x, y, 0.0, yaw),
+            floor(),
+        );
+    }
+    assert!(max_penetration(&state) > 0.15);
+    let (free, fixed) = free_and_fixed(&state);
+    for xy_only in [false, true] {
+        let opts = ProjectionOptions {
+            xy_only,
+            ..ProjectionOptions::default()
+        };
+        let (offsets, report) = project_objects(&state, &free, &fixed, &opts).unwrap();
+        assert_eq!(report.status, ProjectionStatus::Converged, "{report:?}");
+        let mut s = state.clone();
+        apply_offsets(&mut s, &offsets);
+        assert!(
+            max_penetration(&s) <= 1e-4,
+            "xy_only {xy_only}: {}",
+            max_penetration(&s)
+        );
+    }
+}
