@@ -24,7 +24,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::formats::FormatError;
 use crate::formats::scene_dir::{self, names};
-use crate::physics::collision::{penetrating_pairs, posed_objects};
+use crate::physics::as_written::posed_objects;
+use crate::physics::collision::penetrating_pairs;
 use crate::physics::settle::{ContactOptions, SettleOptions, parse_result, request_args};
 use crate::physics::{BridgePool, PhysicsError};
 use crate::prompt;
@@ -351,7 +352,7 @@ pub fn evaluate(
     pool: Option<&BridgePool>,
     opts: &EvalOptions,
 ) -> Result<Metrics, EvalError> {
-    let posed = posed_objects(&state.scene, &state.assets)?;
+    let posed = posed_objects(&state.scene, &state.assets);
     let reading = prompt::read(&state.scene.provenance.prompt);
     let stb = match (dir, pool, &opts.stability) {
         (Some(dir), Some(pool), Some(s)) => Some(stability(dir, pool, s)?),

@@ -5,6 +5,7 @@
 //! | module | concept |
 //! |---|---|
 //! | [`collision`] | penetration depths on posed convex pieces |
+//! | [`as_written`] | the pieces at the precision of the written files |
 //! | [`projection`] | native projection: iterated linearised signed-distance QPs |
 //! | [`drake_projection`] | the Drake projection (SNOPT/IPOPT) through the bridge, the reference |
 //! | [`bridge`], [`pool`] | one bridge process; N of them in parallel |
@@ -13,6 +14,7 @@
 //! | [`removal`] | which objects fell, and why |
 //! | [`postprocess`] | furniture phase and manipuland phase: project, settle, remove |
 
+pub mod as_written;
 pub mod bridge;
 pub mod collision;
 pub mod drake_projection;

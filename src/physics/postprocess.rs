@@ -20,7 +20,8 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::PhysicsError;
-use super::collision::{penetrating_pairs, posed_objects};
+use super::as_written::posed_objects;
+use super::collision::penetrating_pairs;
 use super::pool::{BridgePool, Job};
 use super::projection::{
     Movable, ProjectionOptions, ProjectionReport, XyRegion, apply_offsets, project_objects,
@@ -506,7 +507,7 @@ fn remove_penetrating(
 ) -> Result<Vec<String>, PhysicsError> {
     let mut removed = Vec::new();
     loop {
-        let posed = posed_objects(&state.scene, &state.assets)?;
+        let posed = posed_objects(&state.scene, &state.assets);
         let pairs = penetrating_pairs(&posed, threshold_m);
         let rank = |id: &str| -> Option<u8> {
             let o = state.scene.object(id)?;

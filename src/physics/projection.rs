@@ -33,7 +33,8 @@ use parry3d_f64::shape::ConvexPolyhedron;
 use serde::Serialize;
 
 use super::PhysicsError;
-use super::collision::{PosedPiece, posed_objects, sat_penetration};
+use super::as_written::posed_objects;
+use super::collision::{PosedPiece, sat_penetration};
 use crate::scene::Pose;
 use crate::stages::SceneState;
 
@@ -262,7 +263,7 @@ fn build_bodies(
     let free_set: BTreeSet<&str> = free.iter().map(String::as_str).collect();
     let mut scene = state.scene.clone();
     scene.objects.retain(|o| wanted.contains(o.id.as_str()));
-    let posed = posed_objects(&scene, &state.assets)?;
+    let posed = posed_objects(&scene, &state.assets);
     let mut bodies = Vec::new();
     for (obj, p) in scene.objects.iter().zip(posed) {
         let is_free = free_set.contains(obj.id.as_str()) && !p.is_static;
