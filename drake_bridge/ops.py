@@ -207,6 +207,8 @@ def op_collision_report(args):
     }
 
 
+from drake_bridge import projection, settle  # noqa: E402 - they use CACHE above
+
 OPS = {
     **asset_checks.OPS,
     "ping": op_ping,
@@ -214,4 +216,7 @@ OPS = {
     "load": op_load,
     "penetrations": op_penetrations,
     "collision_report": op_collision_report,
+    "project": projection.op_project,
+    "settle": settle.op_settle,
+    "simulate": settle.op_simulate,
 }

@@ -19,6 +19,7 @@
 
 pub mod agents;
 pub mod assets;
+pub mod eval;
 pub mod formats;
 pub mod geometry;
 pub mod knowledge;

@@ -8,7 +8,7 @@ use clap::{Parser, Subcommand};
 use serde_json::json;
 
 use scenesmith::agents::llm::LlmConfig;
-use scenesmith::physics::Bridge;
+use scenesmith::physics::{Bridge, BridgeConfig};
 use scenesmith::pipeline::{self, BackendChoice, GenerateOptions, PipelineError};
 
 /// Text prompt -> simulation-ready indoor scene (SDFormat + Drake model directives).
@@ -93,6 +93,24 @@ enum Command {
         /// Seed.
         #[arg(long, default_value_t = 0)]
         seed: u64,
+    },
+    /// Compute a scene's metrics (counts, COL, STB, MD/XD/MR, NAV, OOB, prompt coverage),
+    /// write DIR/metrics.json and print a table.
+    Eval {
+        /// Scene directory.
+        dir: PathBuf,
+        /// Robot radius for NAV, metres.
+        #[arg(long, default_value_t = 0.25)]
+        robot_radius: f64,
+        /// Skip the 5 s stability simulation (then no Drake is needed).
+        #[arg(long)]
+        no_stb: bool,
+        /// Contact model of the stability simulation.
+        #[arg(long, default_value = "hydroelastic", value_parser = ["hydroelastic", "point"])]
+        contact: String,
+        /// Simulate the whole 5 s even when everything is at rest earlier.
+        #[arg(long)]
+        full_stb: bool,
     },
 }
 
@@ -218,6 +236,21 @@ fn run_generate(cli_json: bool, opts: GenerateOptions) -> anyhow::Result<ExitCod
                 );
             }
         }
+        let pp = &summary.post_process;
+        let removed: Vec<&String> = pp
+            .furniture
+            .removed
+            .iter()
+            .chain(&pp.manipuland.removed)
+            .chain(&pp.removed_penetrating)
+            .collect();
+        if !removed.is_empty() {
+            eprintln!(
+                "  post-processing removed {} objects (reasons in scene.json)",
+                removed.len()
+            );
+        }
+        eprint!("{}", scenesmith::eval::table(&summary.metrics));
         if let Some(c) = &summary.check {
             eprintln!(
                 "  drake {}: {} model instances, {} free bodies, COL {:.2}% (max depth {:.2} mm)",
@@ -303,6 +336,46 @@ fn run_render(cli_json: bool, dir: PathBuf, out: Option<PathBuf>) -> anyhow::Res
             files.len(),
             t0.elapsed().as_secs_f64()
         );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn run_eval(
+    cli_json: bool,
+    dir: PathBuf,
+    robot_radius: f64,
+    no_stb: bool,
+    contact: &str,
+    full_stb: bool,
+) -> anyhow::Result<ExitCode> {
+    use scenesmith::eval::{self, EvalOptions, StabilityOptions};
+    use scenesmith::physics::settle::{ContactModel, ContactOptions};
+    let model = if contact == "point" {
+        ContactModel::Point
+    } else {
+        ContactModel::Hydroelastic
+    };
+    let opts = EvalOptions {
+        robot_radius_m: robot_radius,
+        stability: (!no_stb).then(|| StabilityOptions {
+            contact: ContactOptions {
+                model,
+                ..ContactOptions::default()
+            },
+            stop_at_rest: !full_stb,
+            ..StabilityOptions::default()
+        }),
+        ..EvalOptions::default()
+    };
+    let pool = (!no_stb).then(|| scenesmith::physics::BridgePool::new(BridgeConfig::from_env(), 1));
+    let metrics = eval::evaluate_dir(&dir, pool.as_ref(), &opts)
+        .with_context(|| format!("evaluating {}", dir.display()))?;
+    eval::write_metrics(&dir, &metrics)?;
+    if cli_json {
+        print_json(&serde_json::to_value(&metrics)?)?;
+    } else {
+        eprintln!("metrics of {} (written to metrics.json)", dir.display());
+        eprint!("{}", eval::table(&metrics));
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -476,6 +549,13 @@ fn main() -> ExitCode {
             size,
             seed,
         } => run_asset(cli.json, description, out, stage, size, seed),
+        Command::Eval {
+            dir,
+            robot_radius,
+            no_stb,
+            contact,
+            full_stb,
+        } => run_eval(cli.json, dir, robot_radius, no_stb, &contact, full_stb),
     };
     match result {
         Ok(code) => code,

@@ -18,12 +18,14 @@ use crate::agents::llm::{
 };
 use crate::agents::{AgentError, RunLog};
 use crate::assets::AssetError;
+use crate::eval::{self, EvalError, EvalOptions, Metrics};
 use crate::formats::FormatError;
 use crate::formats::scene_dir::{self, names};
 use crate::geometry::GeometryError;
 use crate::layout::{self, architecture};
 use crate::physics::collision;
-use crate::physics::{Bridge, BridgeError};
+use crate::physics::postprocess::{self, PostProcessOptions, PostProcessReport};
+use crate::physics::{Bridge, BridgeError, BridgePool, PhysicsError};
 use crate::prompt;
 use crate::scene::{ObjectKind, Pose, Scene, Support, sanitize_name};
 use crate::stages::SceneState;
@@ -64,6 +66,12 @@ pub enum PipelineError {
     /// Rendering the views failed.
     #[error(transparent)]
     Render(#[from] crate::render::RenderError),
+    /// Post-processing (projection, settling) failed.
+    #[error(transparent)]
+    Physics(#[from] PhysicsError),
+    /// The metrics could not be computed or written.
+    #[error(transparent)]
+    Eval(#[from] EvalError),
     /// The written scene does not load or is not collision-free.
     #[error("scene check failed: {0}")]
     CheckFailed(String),
@@ -157,6 +165,10 @@ pub struct GenerateSummary {
     pub rust_penetrating_pairs: usize,
     /// Drake check, when run.
     pub check: Option<CheckSummary>,
+    /// What post-processing did (projections, settling, removals).
+    pub post_process: PostProcessReport,
+    /// The metrics written to `metrics.json`.
+    pub metrics: Metrics,
     /// Wall time per step, seconds.
     pub timings: Timings,
 }
@@ -380,6 +392,7 @@ type Finished = (
     BuildReport,
     Vec<collision::PairPenetration>,
     Option<CheckSummary>,
+    Box<(PostProcessReport, Metrics)>,
 );
 
 /// Writes a built scene into the staging directory, checks it in Drake and commits it.
@@ -396,6 +409,14 @@ fn finish_run(
     {
         state.scene.llm_usage = t.usage();
     }
+
+    // --- physics post-processing (projection, settling, fallen-object removal) ---
+    // Without the Drake check (`--no-check`) only the native projections run.
+    let pool = opts.drake_check.then(BridgePool::from_env);
+    let post_process = timed(timings, "post_process", || {
+        postprocess::post_process(&mut state, pool.as_ref(), &PostProcessOptions::default())
+    })?;
+    // --- end of physics post-processing ---
 
     let rust_pairs = timed(timings, "rust_collision_check", || {
         collision::posed_objects(&state.scene, &state.assets)
@@ -434,8 +455,27 @@ fn finish_run(
         None
     };
 
+    // --- metrics.json (the same code as `scenesmith eval`; STB needs the bridge) ---
+    let metrics = timed(timings, "metrics", || {
+        eval::evaluate(
+            &state,
+            Some(staging.path()),
+            pool.as_ref(),
+            &EvalOptions::default(),
+        )
+    })?;
+    eval::write_metrics(staging.path(), &metrics)?;
+    // --- end of metrics ---
+
     let out = staging.commit()?;
-    Ok((out, state, report, rust_pairs, check))
+    Ok((
+        out,
+        state,
+        report,
+        rust_pairs,
+        check,
+        Box::new((post_process, metrics)),
+    ))
 }
 
 /// Runs the whole pipeline and writes the scene directory.
@@ -465,7 +505,7 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
     let finished = built.and_then(|(state, report)| {
         finish_run(opts, staging, &transport, state, report, &mut timings)
     });
-    let (out, state, report, rust_pairs, check) = match finished {
+    let (out, state, report, rust_pairs, check, physics) = match finished {
         Ok(v) => v,
         Err(e) if checkpoints.finished().is_empty() => {
             checkpoints.clear();
@@ -503,6 +543,8 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
         unknown_nouns: report.unknown_nouns,
         rust_penetrating_pairs: rust_pairs.len(),
         check,
+        post_process: physics.0,
+        metrics: physics.1,
         timings,
     })
 }

@@ -10,6 +10,49 @@ pub fn convex_to_obj(piece: &ConvexPiece) -> String {
     mesh_to_obj(&piece.vertices, &piece.triangles, None)
 }
 
+/// A convex piece from the OBJ text [`convex_to_obj`] writes, keeping its vertex order and
+/// triangles, so a piece read back writes the same bytes (and Drake, which hulls the file,
+/// sees the same file). Other OBJ text (no faces, polygons, `v/vt/vn` corners) is re-hulled.
+pub fn parse_convex_obj(text: &str) -> Result<ConvexPiece, String> {
+    let mut vertices = Vec::new();
+    let mut triangles = Vec::new();
+    let mut exact = true;
+    for line in text.lines() {
+        let mut it = line.split_whitespace();
+        match it.next() {
+            Some("v") => {
+                let xyz: Vec<f64> = it.filter_map(|t| t.parse().ok()).collect();
+                let [x, y, z] = xyz[..] else {
+                    return Err(format!("bad vertex line {line:?}"));
+                };
+                vertices.push([x, y, z]);
+            }
+            Some("f") => {
+                let idx: Vec<Option<u32>> = it
+                    .map(|t| t.parse::<u32>().ok().and_then(|i| i.checked_sub(1)))
+                    .collect();
+                match idx[..] {
+                    [Some(a), Some(b), Some(c)] => triangles.push([a, b, c]),
+                    _ => exact = false,
+                }
+            }
+            _ => {}
+        }
+    }
+    let n = vertices.len() as u32;
+    if exact && !triangles.is_empty() && triangles.iter().flatten().all(|i| *i < n) {
+        let piece = ConvexPiece {
+            vertices,
+            triangles,
+        };
+        if piece.volume() > 0.0 {
+            return Ok(piece);
+        }
+        return ConvexPiece::from_points(&piece.vertices).map_err(|e| e.to_string());
+    }
+    ConvexPiece::from_points(&vertices).map_err(|e| e.to_string())
+}
+
 /// OBJ text of a triangle mesh with normals.
 pub fn trimesh_to_obj(mesh: &TriMesh) -> String {
     mesh_to_obj(&mesh.positions, &mesh.triangles, Some(&mesh.normals))

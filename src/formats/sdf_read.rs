@@ -7,7 +7,7 @@ use std::path::Path;
 use crate::assets::{Asset, Contact, Joint, JointKind, Link};
 use crate::formats::xml::{self, El};
 use crate::formats::{gltf_read, obj};
-use crate::geometry::{ConvexPiece, MassProps};
+use crate::geometry::MassProps;
 use crate::scene::{AssetRecord, Pose};
 
 fn pose_of(el: &El) -> Result<Pose, String> {
@@ -110,10 +110,8 @@ pub fn read_asset(dir: &Path, record: &AssetRecord) -> Result<Asset, String> {
             let path = local_file(dir, uri)?;
             let text =
                 std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-            let mesh = obj::parse_obj(&text).map_err(|e| format!("{}: {e}", path.display()))?;
             collisions.push(
-                ConvexPiece::from_points(&mesh.positions)
-                    .map_err(|e| format!("{}: {e}", path.display()))?,
+                obj::parse_convex_obj(&text).map_err(|e| format!("{}: {e}", path.display()))?,
             );
             link_contact.get_or_insert_with(|| contact(c));
         }

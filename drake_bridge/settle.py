@@ -1,0 +1,140 @@
+"""Gravity settling and fixed-length simulation of a scene's free bodies.
+
+`settle` runs a discrete plant (1 ms, SAP-family "lagged" approximation by default) until every
+free body has stayed slower than the rest thresholds for `rest_time` seconds, or `max_time`
+simulated seconds, or `wall_limit` wall seconds; it returns the final free-body poses and how far
+each instance moved. `simulate` is the same loop for a fixed duration (the STB metric).
+Neither decides what is removed: the caller reads the motions and applies its own rules.
+"""
+
+import time
+
+import numpy as np
+from pydrake.all import Simulator
+
+from drake_bridge.errors import BadRequest
+from drake_bridge.sim_plant import (
+    SIM_CACHE,
+    apply_poses,
+    contact_config,
+    free_bodies,
+    instance_name,
+    number,
+    pose_json,
+)
+
+
+def _max_penetration(scene, ctx):
+    """Deepest overlap between two different model instances where one can move, metres."""
+    plant = scene.plant
+    query = scene.scene_graph.get_query_output_port().Eval(scene.scene_graph_context(ctx))
+    inspector = query.inspector()
+    deepest = 0.0
+    for pp in query.ComputePointPairPenetration():
+        ba = plant.GetBodyFromFrameId(inspector.GetFrameId(pp.id_A))
+        bb = plant.GetBodyFromFrameId(inspector.GetFrameId(pp.id_B))
+        if ba.model_instance() == bb.model_instance():
+            continue
+        deepest = max(deepest, float(pp.depth))
+    return deepest
+
+
+def _run(args, stop_at_rest_default, duration_key, duration_default):
+    cfg = contact_config(args)
+    time_step = number(args, "time_step", 1e-3, 1e-4, 1e-2)
+    duration = number(args, duration_key, duration_default, 0.0, 600.0)
+    rest_speed = number(args, "rest_speed", 2e-3, 0.0)
+    rest_angular_speed = number(args, "rest_angular_speed", 2e-2, 0.0)
+    rest_time = number(args, "rest_time", 0.25, 0.0)
+    interval = number(args, "check_interval", 0.01, time_step)
+    wall_limit = number(args, "wall_limit", 600.0, 0.0)
+    stop_at_rest = args.get("stop_at_rest", stop_at_rest_default)
+    if not isinstance(stop_at_rest, bool):
+        raise BadRequest("stop_at_rest must be true or false")
+    floor_z = args.get("floor_z")
+    if floor_z is not None:
+        floor_z = number(args, "floor_z", 0.0)
+
+    t_wall = time.perf_counter()
+    scene = SIM_CACHE.get(args, cfg, time_step)
+    build_s = time.perf_counter() - t_wall
+    plant = scene.plant
+    ctx = scene.context.Clone()
+    pctx = plant.GetMyContextFromRoot(ctx)
+    apply_poses(plant, pctx, args.get("poses"))
+    bodies = free_bodies(plant)
+    start = {b.index(): plant.EvalBodyPoseInWorld(pctx, b) for b in bodies}
+
+    simulator = Simulator(scene.diagram, ctx)
+    simulator.Initialize()
+    t_sim = time.perf_counter()
+    t = 0.0
+    quiet_for = 0.0
+    at_rest = False
+    timed_out = False
+    v_max = w_max = 0.0
+    while t < duration - 1e-12:
+        t = min(duration, t + interval)
+        simulator.AdvanceTo(t)
+        v_max = w_max = 0.0
+        for b in bodies:
+            if floor_z is not None and plant.EvalBodyPoseInWorld(pctx, b).translation()[2] < floor_z - 0.5:
+                continue  # fell out of the scene; it will not come to rest
+            V = plant.EvalBodySpatialVelocityInWorld(pctx, b)
+            v_max = max(v_max, float(np.linalg.norm(V.translational())))
+            w_max = max(w_max, float(np.linalg.norm(V.rotational())))
+        quiet_for = quiet_for + interval if (v_max < rest_speed and w_max < rest_angular_speed) else 0.0
+        if quiet_for >= rest_time - 1e-9:
+            at_rest = True
+            if stop_at_rest:
+                break
+        else:
+            at_rest = False
+        if time.perf_counter() - t_wall > wall_limit:
+            timed_out = True
+            break
+    sim_s = time.perf_counter() - t_sim
+
+    poses = {}
+    motion = {}
+    for b in bodies:
+        X0 = start[b.index()]
+        X = plant.EvalBodyPoseInWorld(pctx, b)
+        name = instance_name(plant, b)
+        poses.setdefault(name, {})[b.name()] = pose_json(X)
+        disp = float(np.linalg.norm(X.translation() - X0.translation()))
+        rot = float(X0.rotation().InvertAndCompose(X.rotation()).ToAngleAxis().angle())
+        m = motion.setdefault(name, {"displacement_m": 0.0, "rotation_rad": 0.0,
+                                     "start_z": float(X0.translation()[2]), "end_z": float(X.translation()[2])})
+        m["displacement_m"] = max(m["displacement_m"], disp)
+        m["rotation_rad"] = max(m["rotation_rad"], rot)
+    steps = int(round(t / time_step))
+    return {
+        "poses": poses,
+        "motion": motion,
+        "sim_time": t,
+        "steps": steps,
+        "at_rest": at_rest,
+        "timed_out": timed_out,
+        "max_speed": v_max,
+        "max_angular_speed": w_max,
+        "max_penetration_m": _max_penetration(scene, ctx),
+        "free_bodies": len(bodies),
+        "contact": cfg,
+        "time_step": time_step,
+        "build_s": build_s,
+        "sim_s": sim_s,
+        "wall_s": time.perf_counter() - t_wall,
+        "ms_per_step": 1e3 * sim_s / steps if steps else 0.0,
+        "cache": {"hits": SIM_CACHE.hits, "misses": SIM_CACHE.misses},
+    }
+
+
+def op_settle(args):
+    """Simulates until rest (or `max_time`, default 3 s); returns final free-body poses."""
+    return _run(args, True, "max_time", 3.0)
+
+
+def op_simulate(args):
+    """Simulates for `duration` seconds (default 5) and reports how far every free body moved."""
+    return _run(args, False, "duration", 5.0)

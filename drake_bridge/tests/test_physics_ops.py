@@ -1,0 +1,160 @@
+"""The physics ops (settle, simulate, project) on hand-written box scenes with known answers."""
+
+import pytest
+
+from drake_bridge import ops
+from drake_bridge.errors import BadRequest
+from drake_bridge.tests.conftest import write_scene
+
+FLOOR = ("floor", (0.0, 0.0, -0.05), (4.0, 4.0, 0.1), True)
+
+
+def _z(result, name):
+    return result["poses"][name]["body"]["xyz"][2]
+
+
+def test_box_dropped_on_a_table_lands_on_it(tmp_path):
+    # Table top: 0.6 x 0.6 slab with its top at z = 0.7; the box starts 2 cm above it.
+    scene = write_scene(tmp_path, [
+        FLOOR,
+        ("table", (0.0, 0.0, 0.675), (0.6, 0.6, 0.05), True),
+        ("box", (0.05, 0.0, 0.7 + 0.05 + 0.02), (0.1, 0.1, 0.1), False),
+    ])
+    r = ops.OPS["settle"](dict(scene, floor_z=0.0))
+    assert r["at_rest"] and not r["timed_out"]
+    assert r["sim_time"] < 1.5, "a 2 cm drop comes to rest quickly"
+    assert _z(r, "box") == pytest.approx(0.75, abs=1e-3)
+    assert r["poses"]["box"]["body"]["xyz"][:2] == pytest.approx([0.05, 0.0], abs=1e-3)
+    m = r["motion"]["box"]
+    assert m["displacement_m"] == pytest.approx(0.02, abs=1e-3)
+    assert m["rotation_rad"] < 0.01
+    assert r["max_penetration_m"] < 5e-4
+
+
+def test_overhanging_box_falls_off_and_the_stack_below_stays(tmp_path):
+    # A box resting on a pedestal, and a second box balanced on its edge with most of it over
+    # the side: the top one falls to the floor, the bottom one stays.
+    scene = write_scene(tmp_path, [
+        FLOOR,
+        ("pedestal", (0.0, 0.0, 0.25), (0.2, 0.2, 0.5), True),
+        ("base", (0.0, 0.0, 0.55), (0.1, 0.1, 0.1), False),
+        ("top", (0.13, 0.0, 0.651), (0.2, 0.1, 0.1), False),
+    ])
+    r = ops.OPS["settle"](dict(scene, floor_z=0.0, max_time=3.0))
+    assert _z(r, "top") < 0.2, "the overhanging box fell"
+    assert r["motion"]["top"]["displacement_m"] > 0.3
+    assert r["motion"]["base"]["displacement_m"] < 5e-3
+
+
+def test_simulate_runs_the_whole_duration_and_point_contact_is_selectable(tmp_path):
+    scene = write_scene(tmp_path, [FLOOR, ("box", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False)])
+    r = ops.OPS["simulate"](dict(scene, duration=0.3))
+    assert r["sim_time"] == pytest.approx(0.3)
+    assert r["steps"] == 300
+    assert r["motion"]["box"]["displacement_m"] < 1e-3
+    p = ops.OPS["simulate"](dict(scene, duration=0.1, contact={"model": "point"}))
+    assert p["contact"]["model"] == "point"
+    with pytest.raises(BadRequest, match="contact.model"):
+        ops.OPS["simulate"](dict(scene, contact={"model": "magic"}))
+    with pytest.raises(BadRequest, match="unknown contact keys"):
+        ops.OPS["simulate"](dict(scene, contact={"stiffness": 1}))
+
+
+def test_settle_takes_initial_poses(tmp_path):
+    scene = write_scene(tmp_path, [FLOOR, ("box", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False)])
+    r = ops.OPS["settle"](dict(scene, poses={"box": {"body": {"xyz": [1.0, 0.5, 0.3],
+                                                              "wxyz": [1, 0, 0, 0]}}}))
+    assert r["poses"]["box"]["body"]["xyz"] == pytest.approx([1.0, 0.5, 0.05], abs=1e-3)
+    with pytest.raises(BadRequest, match="not a free body"):
+        ops.OPS["settle"](dict(scene, poses={"floor": {"body": {"xyz": [0, 0, 0],
+                                                                "wxyz": [1, 0, 0, 0]}}}))
+
+
+@pytest.fixture
+def deep_overlap(tmp_path):
+    """Four boxes piled into each other on the floor, one box far away, one on a welded shelf."""
+    return write_scene(tmp_path, [
+        FLOOR,
+        ("a", (0.00, 0.00, 0.05), (0.1, 0.1, 0.1), False),
+        ("b", (0.06, 0.01, 0.05), (0.1, 0.1, 0.1), False),
+        ("c", (0.02, 0.07, 0.05), (0.1, 0.1, 0.1), False),
+        ("d", (0.05, 0.05, 0.08), (0.1, 0.1, 0.1), False),
+        ("far", (1.5, 1.5, 0.05), (0.1, 0.1, 0.1), False),
+    ])
+
+
+@pytest.mark.parametrize("solver", ["snopt", "ipopt", "push_out"])
+def test_projection_separates_and_leaves_the_rest(deep_overlap, solver):
+    before = ops.op_load(deep_overlap)
+    r = ops.OPS["project"](dict(deep_overlap, solver=solver))
+    assert r["initial_max_penetration_m"] > 0.03
+    assert r["solver"] == solver
+    assert r["max_penetration_m"] <= 1e-4
+    start = {m["name"]: m["free_bodies"]["body"] for m in before["model_instances"]
+             if not m["welded"]}
+    for name, pose in start.items():
+        after = r["poses"][name]["body"]
+        assert after["wxyz"] == pytest.approx(pose["wxyz"], abs=1e-9), "orientation kept"
+        lowest = after["xyz"][2] - 0.05
+        assert lowest >= -1e-6, f"{name} pushed into the floor"
+    assert r["poses"]["far"]["body"]["xyz"] == pytest.approx(start["far"]["xyz"], abs=1e-4)
+
+
+def test_projection_without_overlap_moves_nothing(tmp_path):
+    scene = write_scene(tmp_path, [FLOOR, ("a", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False),
+                                   ("b", (0.2, 0.0, 0.05), (0.1, 0.1, 0.1), False)])
+    r = ops.OPS["project"](scene)
+    assert r["solver"] == "none"
+    assert r["max_displacement_m"] == 0.0
+
+
+def test_projection_options(deep_overlap):
+    xy = ops.OPS["project"](dict(deep_overlap, xy_only=True, solver="snopt"))
+    for name in "abc":
+        assert xy["poses"][name]["body"]["xyz"][2] == pytest.approx(0.05, abs=1e-9)
+    # Only `d` may move: the others stay exactly where they were.
+    only_d = ops.OPS["project"](dict(deep_overlap, movable=["d"], solver="push_out"))
+    assert only_d["movable"] == ["d"]
+    assert only_d["poses"]["a"]["body"]["xyz"] == pytest.approx([0.0, 0.0, 0.05])
+    # A region that keeps `d`'s origin at x <= 0.05 (it is at 0.05).
+    region = ops.OPS["project"](dict(deep_overlap, regions={"d": [[1.0, 0.0, 0.05]]},
+                                     solver="snopt"))
+    assert region["poses"]["d"]["body"]["xyz"][0] <= 0.05 + 1e-6
+    with pytest.raises(BadRequest, match="not free"):
+        ops.OPS["project"](dict(deep_overlap, movable=["floor"]))
+
+
+def test_projection_wall_clock_limit_falls_back_to_push_out(deep_overlap):
+    r = ops.OPS["project"](dict(deep_overlap, time_limit=1e-3))
+    assert r["solver"] == "push_out"
+    assert r["max_penetration_m"] <= 1e-4
+    statuses = [a["status"] for a in r["attempts"]]
+    assert not statuses or "wall-clock limit" in statuses[0]
+    assert r["wall_s"] < 30
+
+
+def test_physics_ops_are_registered():
+    assert {"project", "settle", "simulate"} <= set(ops.OPS)
+
+
+def test_a_solve_past_its_wall_clock_limit_is_killed():
+    import time
+
+    from pydrake.solvers import MathematicalProgram, SnoptSolver, SolverOptions
+
+    from drake_bridge.projection import _solve_with_deadline
+
+    prog = MathematicalProgram()
+    x = prog.NewContinuousVariables(2)
+
+    def slow_cost(v):
+        time.sleep(0.05)
+        return (v[0] - 1.0) ** 2 + (v[1] + 2.0) ** 2
+
+    prog.AddCost(slow_cost, vars=x)
+    t0 = time.perf_counter()
+    status, ok, q = _solve_with_deadline(SnoptSolver(), prog, x, [0.0, 0.0], SolverOptions(), 0.3)
+    assert status == "wall-clock limit" and not ok and q is None
+    assert time.perf_counter() - t0 < 2.0
+    status, ok, q = _solve_with_deadline(SnoptSolver(), prog, x, [0.9, -1.9], SolverOptions(), 60)
+    assert ok and q == pytest.approx([1.0, -2.0], abs=1e-4)

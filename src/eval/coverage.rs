@@ -1,0 +1,187 @@
+//! Prompt coverage: which objects (and how many) the prompt asks for, and whether the scene has
+//! them. Requirements come from the prompt reader ([`crate::prompt::read`]); this module only
+//! compares them with the scene's object categories.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use crate::prompt::{Count, Reading};
+use crate::scene::{ObjectKind, Scene};
+
+/// One requirement of the prompt and how the scene meets it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Requirement {
+    /// Asset category.
+    pub category: String,
+    /// `exactly`, `at_least`, `several` or `none` (negated: "no TV").
+    pub kind: String,
+    /// Number asked for (0 for `none`).
+    pub required: u32,
+    /// Objects of the category in the scene.
+    pub present: u32,
+    /// Met: `exactly n` needs n, `at_least n` n or more, `several` two or more, `none` zero.
+    pub satisfied: bool,
+}
+
+/// Coverage of a prompt by a scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Coverage {
+    /// Per category, in category order.
+    pub requirements: Vec<Requirement>,
+    /// Requirements met.
+    pub satisfied: usize,
+    /// Percent of requirements met (100 when the prompt names nothing).
+    pub percent: f64,
+    /// Percent of the asked-for object count present: sum(min(present, required)) /
+    /// sum(required) over positive requirements.
+    pub count_percent: f64,
+}
+
+/// Compares `reading` with the objects of `scene`. Several mentions of one category merge
+/// into the largest count; a category both asked for and negated counts as asked for.
+pub fn coverage(reading: &Reading, scene: &Scene) -> Coverage {
+    let mut present: BTreeMap<&str, u32> = BTreeMap::new();
+    for o in scene
+        .objects
+        .iter()
+        .filter(|o| o.kind != ObjectKind::Architecture)
+    {
+        *present.entry(o.category.as_str()).or_insert(0) += 1;
+    }
+    let mut asked: BTreeMap<String, Count> = BTreeMap::new();
+    let mut negated: Vec<String> = Vec::new();
+    for m in &reading.mentions {
+        if m.negated {
+            negated.push(m.category.clone());
+            continue;
+        }
+        asked
+            .entry(m.category.clone())
+            .and_modify(|c| {
+                if m.count.minimum() > c.minimum() {
+                    *c = m.count;
+                }
+            })
+            .or_insert(m.count);
+    }
+    let mut requirements = Vec::new();
+    for (cat, count) in &asked {
+        let have = present.get(cat.as_str()).copied().unwrap_or(0);
+        let (kind, required, satisfied) = match count {
+            Count::Exactly(n) => ("exactly", *n, have == *n),
+            Count::AtLeast(n) => ("at_least", *n, have >= *n),
+            Count::Several => ("several", count.minimum(), have >= count.minimum()),
+        };
+        requirements.push(Requirement {
+            category: cat.clone(),
+            kind: kind.into(),
+            required,
+            present: have,
+            satisfied,
+        });
+    }
+    negated.sort();
+    negated.dedup();
+    for cat in negated.into_iter().filter(|c| !asked.contains_key(c)) {
+        let have = present.get(cat.as_str()).copied().unwrap_or(0);
+        requirements.push(Requirement {
+            category: cat,
+            kind: "none".into(),
+            required: 0,
+            present: have,
+            satisfied: have == 0,
+        });
+    }
+    let satisfied = requirements.iter().filter(|r| r.satisfied).count();
+    let percent = if requirements.is_empty() {
+        100.0
+    } else {
+        100.0 * satisfied as f64 / requirements.len() as f64
+    };
+    let (got, want) =
+        requirements
+            .iter()
+            .filter(|r| r.required > 0)
+            .fold((0u64, 0u64), |(g, w), r| {
+                (
+                    g + u64::from(r.present.min(r.required)),
+                    w + u64::from(r.required),
+                )
+            });
+    Coverage {
+        requirements,
+        satisfied,
+        percent,
+        count_percent: if want == 0 {
+            100.0
+        } else {
+            100.0 * got as f64 / want as f64
+        },
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::prompt::Mention;
+    use crate::scene::{Pose, SceneObject, Support};
+
+    fn scene_with(cats: &[&str]) -> Scene {
+        let mut s = Scene::new("p", 0, "t");
+        for (i, c) in cats.iter().enumerate() {
+            s.objects.push(SceneObject {
+                id: format!("{c}_{i}"),
+                category: c.to_string(),
+                kind: ObjectKind::Furniture,
+                room: "r".into(),
+                asset: "a".into(),
+                world_from_object: Pose::IDENTITY,
+                support: Support::World,
+                welded: false,
+                joint_positions: Default::default(),
+            });
+        }
+        s
+    }
+
+    fn mention(cat: &str, count: Count, negated: bool) -> Mention {
+        Mention {
+            category: cat.into(),
+            noun: cat.into(),
+            count,
+            negated,
+        }
+    }
+
+    #[test]
+    fn exact_at_least_several_and_negated() {
+        let reading = Reading {
+            room_type: "kitchen".into(),
+            size_scale: 1.0,
+            mentions: vec![
+                mention("chair", Count::Exactly(4), false),
+                mention("mug", Count::AtLeast(3), false),
+                mention("book", Count::Several, false),
+                mention("cabinet", Count::Exactly(1), true),
+            ],
+        };
+        let scene = scene_with(&[
+            "chair", "chair", "chair", "mug", "mug", "mug", "mug", "book",
+        ]);
+        let c = coverage(&reading, &scene);
+        let by: BTreeMap<_, _> = c
+            .requirements
+            .iter()
+            .map(|r| (r.category.as_str(), r))
+            .collect();
+        assert!(!by["chair"].satisfied && by["chair"].present == 3);
+        assert!(by["mug"].satisfied);
+        assert!(!by["book"].satisfied && by["book"].required == 2);
+        assert!(by["cabinet"].satisfied && by["cabinet"].kind == "none");
+        assert_eq!(c.satisfied, 2);
+        assert!((c.percent - 50.0).abs() < 1e-9);
+        // 3 of 4 chairs, 3 of 3 mugs, 1 of 2 books.
+        assert!((c.count_percent - 100.0 * 7.0 / 9.0).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,486 @@
+//! Scene metrics (`metrics.json`, `scenesmith eval DIR`).
+//!
+//! | metric | meaning |
+//! |---|---|
+//! | counts | objects in total, per kind, per room, per category (architecture excluded) |
+//! | COL | percent of objects penetrating another object or a wall/floor by more than 1 mm; mean and max depth of those pairs (parry3d on the convex collision pieces) |
+//! | STB | percent of free objects that move < 1 cm and rotate < 0.1 rad in a 5 s simulation at 1 ms (Drake, scene as written: wall/ceiling objects welded, furniture and small objects free; see [`StabilityOptions::stop_at_rest`] for the early stop) |
+//! | MD, XD, MR | mean displacement (mm), max displacement (m), mean rotation (rad) of the free objects in that simulation |
+//! | NAV | largest connected free floor region / all free floor, for a round robot (radius configurable) |
+//! | OOB | percent of objects with geometry outside their room's floor polygon |
+//! | prompt | requirements of the prompt reader (objects, counts, negations) met by the scene |
+//!
+//! Everything but STB is computed in-process; STB needs the Drake bridge and is `null` without
+//! it. `metrics.json` holds no timings or host data, so the same scene gives the same bytes.
+
+pub mod coverage;
+pub mod floor;
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use crate::formats::FormatError;
+use crate::formats::scene_dir::{self, names};
+use crate::physics::as_written::posed_objects;
+use crate::physics::collision::penetrating_pairs;
+use crate::physics::settle::{ContactOptions, SettleOptions, parse_result, request_args};
+use crate::physics::{BridgePool, PhysicsError};
+use crate::prompt;
+use crate::scene::ObjectKind;
+use crate::stages::SceneState;
+use crate::util::fsx::write_atomic;
+
+pub use coverage::{Coverage, Requirement};
+pub use floor::{Nav, NavRoom, Oob};
+
+/// Version of the `metrics.json` layout.
+pub const METRICS_VERSION: u32 = 1;
+
+/// File name of the metrics in a scene directory.
+pub const METRICS_JSON: &str = "metrics.json";
+
+/// What can stop an evaluation.
+#[derive(Debug, thiserror::Error)]
+pub enum EvalError {
+    /// The scene directory could not be read or the metrics not written.
+    #[error(transparent)]
+    Format(#[from] FormatError),
+    /// The simulation failed.
+    #[error(transparent)]
+    Physics(#[from] PhysicsError),
+    /// Collision geometry could not be built.
+    #[error(transparent)]
+    Geometry(#[from] crate::geometry::GeometryError),
+}
+
+/// Options of the stability simulation.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct StabilityOptions {
+    /// Simulated seconds.
+    pub duration_s: f64,
+    /// Time step, seconds.
+    pub time_step_s: f64,
+    /// Stable: moved less than this, metres ...
+    pub max_displacement_m: f64,
+    /// ... and turned less than this, radians.
+    pub max_rotation_rad: f64,
+    /// Contact configuration.
+    pub contact: ContactOptions,
+    /// End the simulation early once every free body has stayed below `rest_speed` and
+    /// `rest_angular_speed` for `rest_time`. The stable/unstable decision then adds to every
+    /// object's displacement and rotation what the rest of the duration could still add at
+    /// those speeds (so the early stop can only make STB stricter); MD, XD and MR report the
+    /// motion actually simulated.
+    pub stop_at_rest: bool,
+    /// Rest speed for the early stop, m/s.
+    pub rest_speed: f64,
+    /// Rest angular speed for the early stop, rad/s.
+    pub rest_angular_speed: f64,
+    /// How long everything must rest before the early stop, seconds.
+    pub rest_time: f64,
+}
+
+impl Default for StabilityOptions {
+    fn default() -> Self {
+        StabilityOptions {
+            duration_s: 5.0,
+            time_step_s: 1e-3,
+            max_displacement_m: 0.01,
+            max_rotation_rad: 0.1,
+            contact: ContactOptions::default(),
+            stop_at_rest: true,
+            rest_speed: 5e-4,
+            rest_angular_speed: 5e-3,
+            rest_time: 0.5,
+        }
+    }
+}
+
+/// Options of an evaluation.
+#[derive(Debug, Clone)]
+pub struct EvalOptions {
+    /// Penetration that counts as a collision, metres.
+    pub col_threshold_m: f64,
+    /// Robot radius for NAV, metres.
+    pub robot_radius_m: f64,
+    /// Geometry up to this height blocks the robot, metres.
+    pub robot_height_m: f64,
+    /// OOB tolerance, metres.
+    pub oob_tolerance_m: f64,
+    /// Stability simulation (`None`: skipped).
+    pub stability: Option<StabilityOptions>,
+}
+
+impl Default for EvalOptions {
+    fn default() -> Self {
+        EvalOptions {
+            col_threshold_m: 1e-3,
+            robot_radius_m: 0.25,
+            robot_height_m: 1.5,
+            oob_tolerance_m: 0.01,
+            stability: Some(StabilityOptions::default()),
+        }
+    }
+}
+
+/// Object counts.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Counts {
+    /// Objects (architecture excluded).
+    pub total: usize,
+    /// Per kind.
+    pub per_kind: BTreeMap<String, usize>,
+    /// Per room.
+    pub per_room: BTreeMap<String, usize>,
+    /// Per category.
+    pub per_category: BTreeMap<String, usize>,
+}
+
+/// COL.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Col {
+    /// Threshold, metres.
+    pub threshold_m: f64,
+    /// Objects counted (architecture excluded).
+    pub objects: usize,
+    /// Objects in at least one pair deeper than the threshold.
+    pub colliding: Vec<String>,
+    /// Percent of objects colliding.
+    pub percent: f64,
+    /// Mean depth of the pairs deeper than the threshold, mm (0 without any).
+    pub mean_depth_mm: f64,
+    /// Deepest pair, mm.
+    pub max_depth_mm: f64,
+    /// The pairs `(a, b, depth_mm)`.
+    pub pairs: Vec<(String, String, f64)>,
+}
+
+/// An object that failed the stability test (after an early stop, with the remaining-time
+/// bound added).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Unstable {
+    /// Object id.
+    pub id: String,
+    /// Displacement, metres.
+    pub displacement_m: f64,
+    /// Rotation, radians.
+    pub rotation_rad: f64,
+}
+
+/// STB, MD, XD, MR.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Stability {
+    /// The simulation.
+    pub options: StabilityOptions,
+    /// Free objects simulated.
+    pub free_objects: usize,
+    /// Of those, stable.
+    pub stable: usize,
+    /// STB: percent stable.
+    pub percent: f64,
+    /// MD: mean displacement over the simulated time, mm.
+    pub md_mm: f64,
+    /// XD: max displacement, m.
+    pub xd_m: f64,
+    /// MR: mean rotation, rad.
+    pub mr_rad: f64,
+    /// Everything was at rest at the end.
+    pub at_rest_at_end: bool,
+    /// Seconds actually simulated (less than the duration after an early stop at rest).
+    pub simulated_s: f64,
+    /// The objects that failed.
+    pub unstable: Vec<Unstable>,
+}
+
+/// All metrics of a scene (`metrics.json`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Metrics {
+    /// [`METRICS_VERSION`].
+    pub version: u32,
+    /// Object counts.
+    pub counts: Counts,
+    /// Collisions.
+    pub col: Col,
+    /// Stability (`null` when not simulated).
+    pub stb: Option<Stability>,
+    /// Navigability.
+    pub nav: Nav,
+    /// Out of bounds.
+    pub oob: Oob,
+    /// Prompt coverage.
+    pub prompt: Coverage,
+}
+
+fn counts(state: &SceneState) -> Counts {
+    let mut c = Counts {
+        total: 0,
+        per_kind: BTreeMap::new(),
+        per_room: BTreeMap::new(),
+        per_category: BTreeMap::new(),
+    };
+    for o in state
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.kind != ObjectKind::Architecture)
+    {
+        c.total += 1;
+        *c.per_kind.entry(o.kind.as_str().to_string()).or_insert(0) += 1;
+        *c.per_room.entry(o.room.clone()).or_insert(0) += 1;
+        *c.per_category.entry(o.category.clone()).or_insert(0) += 1;
+    }
+    c
+}
+
+fn col(
+    state: &SceneState,
+    posed: &[crate::physics::collision::PosedObject],
+    threshold: f64,
+) -> Col {
+    let pairs = penetrating_pairs(posed, threshold);
+    let objects: Vec<&str> = state
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.kind != ObjectKind::Architecture)
+        .map(|o| o.id.as_str())
+        .collect();
+    let mut colliding: Vec<String> = pairs
+        .iter()
+        .flat_map(|p| [p.a.as_str(), p.b.as_str()])
+        .filter(|id| objects.contains(id))
+        .map(str::to_string)
+        .collect();
+    colliding.sort();
+    colliding.dedup();
+    let depths: Vec<f64> = pairs.iter().map(|p| p.depth).collect();
+    Col {
+        threshold_m: threshold,
+        objects: objects.len(),
+        percent: if objects.is_empty() {
+            0.0
+        } else {
+            100.0 * colliding.len() as f64 / objects.len() as f64
+        },
+        colliding,
+        mean_depth_mm: if depths.is_empty() {
+            0.0
+        } else {
+            1e3 * depths.iter().sum::<f64>() / depths.len() as f64
+        },
+        max_depth_mm: 1e3 * depths.iter().copied().fold(0.0, f64::max),
+        pairs: pairs
+            .into_iter()
+            .map(|p| (p.a, p.b, p.depth * 1e3))
+            .collect(),
+    }
+}
+
+/// Runs the stability simulation of the scene written in `dir` on the pool.
+pub fn stability(
+    dir: &Path,
+    pool: &BridgePool,
+    opts: &StabilityOptions,
+) -> Result<Stability, EvalError> {
+    let settle = SettleOptions {
+        max_time: opts.duration_s,
+        time_step: opts.time_step_s,
+        stop_at_rest: opts.stop_at_rest,
+        rest_speed: opts.rest_speed,
+        rest_angular_speed: opts.rest_angular_speed,
+        rest_time: opts.rest_time,
+        contact: opts.contact,
+        wall_limit: 3600.0,
+        ..SettleOptions::default()
+    };
+    let (op, args) = request_args(
+        &dir.join(names::DIRECTIVES),
+        &dir.join(names::PACKAGE_XML),
+        &settle,
+    );
+    let result = parse_result(&op, pool.request(&op, args).map_err(PhysicsError::from)?)?;
+    let n = result.motion.len();
+    // After an early stop at rest, the most the remaining time could add.
+    let left = (opts.duration_s - result.sim_time).max(0.0);
+    let (extra_d, extra_r) = if result.at_rest {
+        (left * opts.rest_speed, left * opts.rest_angular_speed)
+    } else {
+        (0.0, 0.0)
+    };
+    let mut unstable = Vec::new();
+    let (mut sum_d, mut sum_r, mut max_d) = (0.0, 0.0, 0.0f64);
+    for (id, m) in &result.motion {
+        sum_d += m.displacement_m;
+        sum_r += m.rotation_rad;
+        max_d = max_d.max(m.displacement_m);
+        let (d, r) = (m.displacement_m + extra_d, m.rotation_rad + extra_r);
+        if !(d < opts.max_displacement_m && r < opts.max_rotation_rad) {
+            unstable.push(Unstable {
+                id: id.clone(),
+                displacement_m: d,
+                rotation_rad: r,
+            });
+        }
+    }
+    let mean = |s: f64| if n == 0 { 0.0 } else { s / n as f64 };
+    Ok(Stability {
+        options: *opts,
+        free_objects: n,
+        stable: n - unstable.len(),
+        percent: if n == 0 {
+            100.0
+        } else {
+            100.0 * (n - unstable.len()) as f64 / n as f64
+        },
+        md_mm: 1e3 * mean(sum_d),
+        xd_m: max_d,
+        mr_rad: mean(sum_r),
+        at_rest_at_end: result.at_rest,
+        simulated_s: result.sim_time,
+        unstable,
+    })
+}
+
+/// Metrics of a scene held in memory; `dir` is where it is written (needed for STB, which also
+/// needs a pool and `opts.stability`).
+pub fn evaluate(
+    state: &SceneState,
+    dir: Option<&Path>,
+    pool: Option<&BridgePool>,
+    opts: &EvalOptions,
+) -> Result<Metrics, EvalError> {
+    let posed = posed_objects(&state.scene, &state.assets);
+    let reading = prompt::read(&state.scene.provenance.prompt);
+    let stb = match (dir, pool, &opts.stability) {
+        (Some(dir), Some(pool), Some(s)) => Some(stability(dir, pool, s)?),
+        _ => None,
+    };
+    Ok(Metrics {
+        version: METRICS_VERSION,
+        counts: counts(state),
+        col: col(state, &posed, opts.col_threshold_m),
+        stb,
+        nav: floor::nav(
+            &state.scene,
+            &posed,
+            opts.robot_radius_m,
+            opts.robot_height_m,
+        ),
+        oob: floor::oob(&state.scene, &posed, opts.oob_tolerance_m),
+        prompt: coverage::coverage(&reading, &state.scene),
+    })
+}
+
+/// Loads the scene directory `dir` and evaluates it.
+pub fn evaluate_dir(
+    dir: &Path,
+    pool: Option<&BridgePool>,
+    opts: &EvalOptions,
+) -> Result<Metrics, EvalError> {
+    let state = scene_dir::load_state(dir)?;
+    evaluate(&state, Some(dir), pool, opts)
+}
+
+/// Writes `metrics.json` into `dir` atomically.
+pub fn write_metrics(dir: &Path, metrics: &Metrics) -> Result<(), EvalError> {
+    let mut text = serde_json::to_string_pretty(metrics).map_err(|e| FormatError::SceneJson {
+        path: dir.join(METRICS_JSON),
+        reason: e.to_string(),
+    })?;
+    text.push('\n');
+    write_atomic(&dir.join(METRICS_JSON), text.as_bytes()).map_err(FormatError::from)?;
+    Ok(())
+}
+
+fn join_counts(m: &BTreeMap<String, usize>) -> String {
+    m.iter()
+        .map(|(k, v)| format!("{v} {k}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The metrics as a two-column text table.
+pub fn table(m: &Metrics) -> String {
+    let mut rows: Vec<(String, String)> = vec![
+        (
+            "objects".into(),
+            format!("{} ({})", m.counts.total, join_counts(&m.counts.per_kind)),
+        ),
+        ("per room".into(), join_counts(&m.counts.per_room)),
+        ("per category".into(), join_counts(&m.counts.per_category)),
+        (
+            "COL".into(),
+            format!(
+                "{:.2} % of {} objects penetrate > {:.1} mm; mean depth {:.2} mm, max {:.2} mm",
+                m.col.percent,
+                m.col.objects,
+                m.col.threshold_m * 1e3,
+                m.col.mean_depth_mm,
+                m.col.max_depth_mm
+            ),
+        ),
+    ];
+    match &m.stb {
+        Some(s) => {
+            rows.push((
+                "STB".into(),
+                format!(
+                    "{:.1} % of {} free objects stable over {:.1} s (< {:.0} mm, < {:.2} rad){}",
+                    s.percent,
+                    s.free_objects,
+                    s.options.duration_s,
+                    s.options.max_displacement_m * 1e3,
+                    s.options.max_rotation_rad,
+                    if s.simulated_s + 1e-9 < s.options.duration_s {
+                        format!(
+                            "; at rest after {:.2} s, remaining motion bounded",
+                            s.simulated_s
+                        )
+                    } else {
+                        String::new()
+                    }
+                ),
+            ));
+            rows.push(("MD".into(), format!("{:.2} mm", s.md_mm)));
+            rows.push(("XD".into(), format!("{:.4} m", s.xd_m)));
+            rows.push(("MR".into(), format!("{:.4} rad", s.mr_rad)));
+        }
+        None => rows.push(("STB".into(), "not simulated (no Drake bridge)".into())),
+    }
+    rows.push((
+        "NAV".into(),
+        format!(
+            "{:.3} (robot radius {:.2} m; {})",
+            m.nav.ratio,
+            m.nav.robot_radius_m,
+            m.nav
+                .rooms
+                .iter()
+                .map(|r| format!("{} {:.3} of {:.1} m2", r.room, r.ratio, r.free_area_m2))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    ));
+    rows.push((
+        "OOB".into(),
+        format!("{:.2} % of {} objects", m.oob.percent, m.oob.objects),
+    ));
+    rows.push((
+        "prompt".into(),
+        format!(
+            "{:.0} % of {} requirements met, {:.0} % of the asked-for objects present",
+            m.prompt.percent,
+            m.prompt.requirements.len(),
+            m.prompt.count_percent
+        ),
+    ));
+    let w = rows.iter().map(|(k, _)| k.len()).max().unwrap_or(0);
+    let mut out = String::new();
+    for (k, v) in rows {
+        let _ = writeln!(out, "  {k:<w$}  {v}");
+    }
+    out
+}

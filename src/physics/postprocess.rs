@@ -1,0 +1,550 @@
+//! Post-processing of a furnished scene: make it physically feasible.
+//!
+//! Two phases, each *project -> settle -> remove what fell -> project again*:
+//! - **furniture**: furniture free (sliding on the floor in the projections), architecture and
+//!   wall/ceiling objects fixed, small objects left out; whatever rests on a piece of furniture
+//!   moves with it;
+//! - **manipuland**: furniture welded, small objects free (3-D projection, each kept over its
+//!   support surface); settling runs one subset scene per supporting entity (the entity welded,
+//!   its small objects free; small objects on the floor share one subset with all furniture
+//!   welded), in parallel over the bridge pool.
+//!
+//! The projections are native ([`super::projection`]); settling needs the Drake bridge and is
+//! skipped without a pool. Objects that still penetrate deeper than
+//! `PostProcessOptions::remove_penetrating_above_m` at the very end are removed, so what is
+//! written is collision-free. Every removal is recorded in `scene.removed` with its reason.
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::PhysicsError;
+use super::as_written::posed_objects;
+use super::collision::penetrating_pairs;
+use super::pool::{BridgePool, Job};
+use super::projection::{
+    Movable, ProjectionOptions, ProjectionReport, XyRegion, apply_offsets, project_objects,
+};
+use super::removal::{RemovalRules, furniture_verdict, manipuland_verdict};
+use super::settle::{SettleOptions, SettleResult, parse_result, request_args};
+use super::workspace::{Role, Workspace};
+use crate::scene::{ObjectKind, Pose, Scene, Support};
+use crate::stages::SceneState;
+
+/// Options of [`post_process`].
+#[derive(Debug, Clone)]
+pub struct PostProcessOptions {
+    /// Base projection options (each phase sets `xy_only`, `movable` and `regions`).
+    pub projection: ProjectionOptions,
+    /// Settling options.
+    pub settle: SettleOptions,
+    /// Settle at all (needs a pool).
+    pub settle_enabled: bool,
+    /// Fallen-object rules.
+    pub rules: RemovalRules,
+    /// At the end, objects still penetrating deeper than this are removed (`None`: kept).
+    pub remove_penetrating_above_m: Option<f64>,
+}
+
+impl Default for PostProcessOptions {
+    fn default() -> Self {
+        PostProcessOptions {
+            projection: ProjectionOptions::default(),
+            settle: SettleOptions::default(),
+            settle_enabled: true,
+            rules: RemovalRules::default(),
+            remove_penetrating_above_m: Some(1e-3),
+        }
+    }
+}
+
+/// One settled subset scene.
+#[derive(Debug, Clone, Serialize)]
+pub struct SubsetReport {
+    /// What the subset is: a room id (furniture phase) or a supporting entity (`floor` for
+    /// small objects on the floor).
+    pub subset: String,
+    /// Free bodies simulated.
+    pub free_bodies: usize,
+    /// Simulated seconds until rest or the cap.
+    pub sim_time: f64,
+    /// Everything came to rest.
+    pub at_rest: bool,
+    /// Deepest overlap at the end, metres.
+    pub max_penetration_m: f64,
+    /// Wall time in the bridge, seconds (not written into scene files).
+    #[serde(skip)]
+    pub wall_s: f64,
+    /// Milliseconds per step (not written into scene files).
+    #[serde(skip)]
+    pub ms_per_step: f64,
+}
+
+/// What one phase did.
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct PhaseReport {
+    /// First projection.
+    pub projection: Option<ProjectionReport>,
+    /// Settled subsets.
+    pub settle: Vec<SubsetReport>,
+    /// Projection after settling.
+    pub cleanup: Option<ProjectionReport>,
+    /// Objects removed in this phase (ids).
+    pub removed: Vec<String>,
+    /// Wall time of the settle requests (all subsets, in parallel), seconds.
+    #[serde(skip)]
+    pub settle_seconds: f64,
+}
+
+/// What post-processing did.
+#[derive(Debug, Clone, Serialize, Default)]
+pub struct PostProcessReport {
+    /// Furniture phase.
+    pub furniture: PhaseReport,
+    /// Small-object phase.
+    pub manipuland: PhaseReport,
+    /// Objects removed at the end because they still penetrated something.
+    pub removed_penetrating: Vec<String>,
+    /// Wall time, seconds (not written into scene files).
+    #[serde(skip)]
+    pub seconds: f64,
+}
+
+/// Runs both phases on `state`. Without a pool (or with settling disabled) only the
+/// projections and the final penetration check run.
+pub fn post_process(
+    state: &mut SceneState,
+    pool: Option<&BridgePool>,
+    opts: &PostProcessOptions,
+) -> Result<PostProcessReport, PhysicsError> {
+    let t0 = Instant::now();
+    let pool = pool.filter(|_| opts.settle_enabled);
+    let mut workspace = match pool {
+        Some(_) => Some(Workspace::new(state)?),
+        None => None,
+    };
+    let furniture = furniture_phase(state, pool, workspace.as_mut(), opts)?;
+    let manipuland = manipuland_phase(state, pool, workspace.as_mut(), opts)?;
+    let removed_penetrating = match opts.remove_penetrating_above_m {
+        Some(t) => remove_penetrating(state, t)?,
+        None => Vec::new(),
+    };
+    state.prune_assets();
+    Ok(PostProcessReport {
+        furniture,
+        manipuland,
+        removed_penetrating,
+        seconds: t0.elapsed().as_secs_f64(),
+    })
+}
+
+/// Ids of every object resting (directly or through others) on `id`.
+fn descendants(scene: &Scene, id: &str) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    let mut frontier = vec![id.to_string()];
+    while let Some(p) = frontier.pop() {
+        for o in &scene.objects {
+            if matches!(&o.support, Support::Object { parent, .. } if *parent == p)
+                && !out.contains(&o.id)
+                && o.id != id
+            {
+                out.push(o.id.clone());
+                frontier.push(o.id.clone());
+            }
+        }
+    }
+    out
+}
+
+/// Moves `id` to `world_from_new` and everything resting on it rigidly with it.
+fn move_with_load(state: &mut SceneState, id: &str, world_from_new: Pose) {
+    let Some(old) = state.scene.object(id).map(|o| o.world_from_object) else {
+        return;
+    };
+    let delta = world_from_new.compose(&old.inverse());
+    let carried = descendants(&state.scene, id);
+    for o in &mut state.scene.objects {
+        if o.id == id {
+            o.world_from_object = world_from_new;
+        } else if carried.contains(&o.id) {
+            o.world_from_object = delta.compose(&o.world_from_object);
+        }
+    }
+}
+
+fn apply_offsets_with_load(
+    state: &mut SceneState,
+    offsets: &BTreeMap<String, nalgebra::Vector3<f64>>,
+) {
+    for (id, d) in offsets {
+        let carried = descendants(&state.scene, id);
+        let moved: BTreeMap<String, nalgebra::Vector3<f64>> = carried
+            .into_iter()
+            .filter(|c| !offsets.contains_key(c))
+            .map(|c| (c, *d))
+            .collect();
+        apply_offsets(state, &moved);
+    }
+    apply_offsets(state, offsets);
+}
+
+fn ids_where(scene: &Scene, f: impl Fn(&crate::scene::SceneObject) -> bool) -> Vec<String> {
+    scene
+        .objects
+        .iter()
+        .filter(|o| f(o))
+        .map(|o| o.id.clone())
+        .collect()
+}
+
+fn is_free_furniture(o: &crate::scene::SceneObject) -> bool {
+    o.kind == ObjectKind::Furniture && !o.welded
+}
+
+fn is_free_manipuland(o: &crate::scene::SceneObject) -> bool {
+    o.kind == ObjectKind::Manipuland && !o.welded
+}
+
+/// Settles each subset on the pool; returns the parsed results in subset order.
+fn settle_subsets(
+    state: &SceneState,
+    pool: &BridgePool,
+    workspace: &mut Workspace,
+    subsets: &[(String, BTreeMap<String, Role>)],
+    opts: &SettleOptions,
+) -> Result<Vec<SettleResult>, PhysicsError> {
+    let mut jobs = Vec::new();
+    for (_, members) in subsets {
+        let directives = workspace.write_subset(state, members)?;
+        let (op, args) = request_args(&directives, &workspace.package_xml(), opts);
+        jobs.push(Job::new(&op, args));
+    }
+    let op = if opts.stop_at_rest {
+        "settle"
+    } else {
+        "simulate"
+    };
+    pool.run_all(jobs)
+        .into_iter()
+        .map(|r| parse_result(op, r?))
+        .collect()
+}
+
+/// The new `world_from_object` of `id` from a settle result, if the object was free in it.
+fn settled_pose(state: &SceneState, result: &SettleResult, id: &str) -> Option<Pose> {
+    let obj = state.scene.object(id)?;
+    let asset = state.assets.get(&obj.asset)?;
+    let root = asset.links.first()?;
+    let world_from_body = result.poses.get(id)?.get(&root.name)?;
+    Some(world_from_body.compose(&root.model_from_link.inverse()))
+}
+
+fn subset_report(subset: &str, r: &SettleResult) -> SubsetReport {
+    SubsetReport {
+        subset: subset.to_string(),
+        free_bodies: r.free_bodies,
+        sim_time: r.sim_time,
+        at_rest: r.at_rest,
+        max_penetration_m: r.max_penetration_m,
+        wall_s: r.wall_s,
+        ms_per_step: r.ms_per_step,
+    }
+}
+
+const FURNITURE_STAGE: &str = "post_process/furniture";
+const MANIPULAND_STAGE: &str = "post_process/manipuland";
+
+/// Furniture phase: project furniture (sliding), settle it per room, remove what fell over,
+/// project again.
+pub fn furniture_phase(
+    state: &mut SceneState,
+    pool: Option<&BridgePool>,
+    workspace: Option<&mut Workspace>,
+    opts: &PostProcessOptions,
+) -> Result<PhaseReport, PhysicsError> {
+    let mut report = PhaseReport::default();
+    let project = |state: &mut SceneState| -> Result<Option<ProjectionReport>, PhysicsError> {
+        let free = ids_where(&state.scene, is_free_furniture);
+        if free.is_empty() {
+            return Ok(None);
+        }
+        let fixed = ids_where(&state.scene, |o| {
+            !is_free_furniture(o) && o.kind != ObjectKind::Manipuland
+        });
+        let popts = ProjectionOptions {
+            xy_only: true,
+            movable: Movable::Auto,
+            regions: BTreeMap::new(),
+            ..opts.projection.clone()
+        };
+        let (offsets, r) = project_objects(state, &free, &fixed, &popts)?;
+        apply_offsets_with_load(state, &offsets);
+        Ok(Some(r))
+    };
+    report.projection = project(state)?;
+
+    if let (Some(pool), Some(ws)) = (pool, workspace) {
+        let mut subsets = Vec::new();
+        for room in &state.scene.rooms {
+            let in_room = |o: &crate::scene::SceneObject| o.room == room.id;
+            if !state
+                .scene
+                .objects
+                .iter()
+                .any(|o| in_room(o) && is_free_furniture(o))
+            {
+                continue;
+            }
+            let members: BTreeMap<String, Role> = state
+                .scene
+                .objects
+                .iter()
+                .filter(|o| in_room(o) && o.kind != ObjectKind::Manipuland)
+                .map(|o| {
+                    let role = if is_free_furniture(o) {
+                        Role::Free
+                    } else {
+                        Role::Welded
+                    };
+                    (o.id.clone(), role)
+                })
+                .collect();
+            subsets.push((room.id.clone(), members));
+        }
+        let t = Instant::now();
+        let results = settle_subsets(state, pool, ws, &subsets, &opts.settle)?;
+        report.settle_seconds = t.elapsed().as_secs_f64();
+        for ((name, members), result) in subsets.iter().zip(&results) {
+            report.settle.push(subset_report(name, result));
+            for (id, role) in members {
+                if *role != Role::Free {
+                    continue;
+                }
+                if let Some(p) = settled_pose(state, result, id) {
+                    move_with_load(state, id, p);
+                }
+            }
+            for (id, role) in members {
+                if *role != Role::Free {
+                    continue;
+                }
+                let Some(obj) = state.scene.object(id).cloned() else {
+                    continue;
+                };
+                let Some(asset) = state.assets.get(&obj.asset) else {
+                    continue;
+                };
+                if let Some(reason) =
+                    furniture_verdict(asset, &obj, &obj.world_from_object, &opts.rules)
+                {
+                    state.remove_object(id, FURNITURE_STAGE, &reason);
+                    report.removed.push(id.clone());
+                }
+            }
+        }
+        report.cleanup = project(state)?;
+    }
+    Ok(report)
+}
+
+/// The furniture (or other non-small object) a small object ultimately rests on, or `floor`.
+fn supporting_entity(scene: &Scene, id: &str) -> String {
+    let mut cur = id.to_string();
+    for _ in 0..scene.objects.len() + 1 {
+        let Some(o) = scene.object(&cur) else { break };
+        match &o.support {
+            Support::Object { parent, .. } => match scene.object(parent) {
+                Some(p) if p.kind == ObjectKind::Manipuland => cur = parent.clone(),
+                Some(p) => return p.id.clone(),
+                None => break,
+            },
+            _ => break,
+        }
+    }
+    "floor".to_string()
+}
+
+/// XY regions keeping each small object's origin over the surface it rests on.
+fn surface_regions(state: &SceneState) -> BTreeMap<String, XyRegion> {
+    let mut out = BTreeMap::new();
+    for o in state.scene.objects.iter().filter(|o| is_free_manipuland(o)) {
+        let Support::Object { parent, surface } = &o.support else {
+            continue;
+        };
+        let Some(p) = state.scene.object(parent) else {
+            continue;
+        };
+        let Some(rec) = state.scene.assets.get(&p.asset) else {
+            continue;
+        };
+        let Some(s) = rec.surfaces.iter().find(|s| &s.id == surface) else {
+            continue;
+        };
+        out.insert(
+            o.id.clone(),
+            XyRegion::rectangle(
+                &p.world_from_object,
+                [s.center[0], s.center[1]],
+                [s.size[0] / 2.0, s.size[1] / 2.0],
+                0.0,
+            ),
+        );
+    }
+    out
+}
+
+/// Small-object phase: project them (3-D, over their surfaces), settle per supporting entity,
+/// remove what fell, project again.
+pub fn manipuland_phase(
+    state: &mut SceneState,
+    pool: Option<&BridgePool>,
+    workspace: Option<&mut Workspace>,
+    opts: &PostProcessOptions,
+) -> Result<PhaseReport, PhysicsError> {
+    let mut report = PhaseReport::default();
+    let project = |state: &mut SceneState,
+                   regions: BTreeMap<String, XyRegion>|
+     -> Result<Option<ProjectionReport>, PhysicsError> {
+        let free = ids_where(&state.scene, is_free_manipuland);
+        if free.is_empty() {
+            return Ok(None);
+        }
+        let fixed = ids_where(&state.scene, |o| !is_free_manipuland(o));
+        let popts = ProjectionOptions {
+            xy_only: false,
+            movable: Movable::Auto,
+            regions,
+            ..opts.projection.clone()
+        };
+        let (offsets, r) = project_objects(state, &free, &fixed, &popts)?;
+        apply_offsets_with_load(state, &offsets);
+        Ok(Some(r))
+    };
+    let regions = surface_regions(state);
+    report.projection = project(state, regions)?;
+
+    if let (Some(pool), Some(ws)) = (pool, workspace) {
+        let mut groups: BTreeMap<String, Vec<String>> = BTreeMap::new();
+        for o in state.scene.objects.iter().filter(|o| is_free_manipuland(o)) {
+            groups
+                .entry(supporting_entity(&state.scene, &o.id))
+                .or_default()
+                .push(o.id.clone());
+        }
+        let architecture: Vec<String> =
+            ids_where(&state.scene, |o| o.kind == ObjectKind::Architecture);
+        let mut subsets = Vec::new();
+        for (entity, items) in &groups {
+            let mut members: BTreeMap<String, Role> = architecture
+                .iter()
+                .map(|a| (a.clone(), Role::Welded))
+                .collect();
+            if entity == "floor" {
+                for o in state.scene.objects.iter().filter(|o| {
+                    o.kind != ObjectKind::Manipuland && o.kind != ObjectKind::Architecture
+                }) {
+                    members.insert(o.id.clone(), Role::Welded);
+                }
+            } else {
+                members.insert(entity.clone(), Role::Welded);
+            }
+            for i in items {
+                members.insert(i.clone(), Role::Free);
+            }
+            subsets.push((entity.clone(), members));
+        }
+        let before: BTreeMap<String, Pose> = state
+            .scene
+            .objects
+            .iter()
+            .map(|o| (o.id.clone(), o.world_from_object))
+            .collect();
+        let t = Instant::now();
+        let results = settle_subsets(state, pool, ws, &subsets, &opts.settle)?;
+        report.settle_seconds = t.elapsed().as_secs_f64();
+        let mut doomed: Vec<(String, String)> = Vec::new();
+        for ((name, members), result) in subsets.iter().zip(&results) {
+            report.settle.push(subset_report(name, result));
+            for (id, role) in members {
+                if *role != Role::Free {
+                    continue;
+                }
+                let Some(p) = settled_pose(state, result, id) else {
+                    continue;
+                };
+                if let Some(o) = state.scene.objects.iter_mut().find(|o| &o.id == id) {
+                    o.world_from_object = p;
+                }
+                let (Some(obj), Some(b)) = (state.scene.object(id), before.get(id)) else {
+                    continue;
+                };
+                let Some(asset) = state.assets.get(&obj.asset) else {
+                    continue;
+                };
+                if let Some(reason) = manipuland_verdict(asset, obj, b, &p, &opts.rules) {
+                    doomed.push((id.clone(), reason));
+                }
+            }
+        }
+        for (id, reason) in doomed {
+            if state.scene.object(&id).is_some() {
+                state.remove_object(&id, MANIPULAND_STAGE, &reason);
+                report.removed.push(id);
+            }
+        }
+        report.cleanup = project(state, BTreeMap::new())?;
+    }
+    Ok(report)
+}
+
+/// Removes objects that still penetrate another object deeper than `threshold_m`: of each
+/// pair the one that is easier to lose (a small object before furniture; never architecture
+/// or welded objects). Returns the removed ids.
+fn remove_penetrating(
+    state: &mut SceneState,
+    threshold_m: f64,
+) -> Result<Vec<String>, PhysicsError> {
+    let mut removed = Vec::new();
+    loop {
+        let posed = posed_objects(&state.scene, &state.assets);
+        let pairs = penetrating_pairs(&posed, threshold_m);
+        let rank = |id: &str| -> Option<u8> {
+            let o = state.scene.object(id)?;
+            if o.welded || o.kind == ObjectKind::Architecture {
+                return None;
+            }
+            Some(if o.kind == ObjectKind::Manipuland {
+                0
+            } else {
+                1
+            })
+        };
+        let mut victim: Option<(String, String, f64)> = None;
+        for p in &pairs {
+            let pick = match (rank(&p.a), rank(&p.b)) {
+                (Some(ra), Some(rb)) => Some(if ra <= rb { (&p.a, &p.b) } else { (&p.b, &p.a) }),
+                (Some(_), None) => Some((&p.a, &p.b)),
+                (None, Some(_)) => Some((&p.b, &p.a)),
+                (None, None) => None,
+            };
+            if let Some((v, other)) = pick {
+                victim = Some((v.clone(), other.clone(), p.depth));
+                break;
+            }
+        }
+        let Some((id, other, depth)) = victim else {
+            break;
+        };
+        state.remove_object(
+            &id,
+            "post_process",
+            &format!(
+                "still penetrating {other} by {:.1} mm after projection and settling",
+                depth * 1e3
+            ),
+        );
+        removed.push(id);
+    }
+    Ok(removed)
+}

@@ -1,0 +1,202 @@
+//! Gravity settling through the bridge pool, fallen-object removal, and the pool surviving a
+//! killed worker.
+
+mod physics_util;
+
+use std::time::Duration;
+
+use physics_util::*;
+use scenesmith::assets::procedural::AssetRequest;
+use scenesmith::formats::scene_dir::write_scene_dir;
+use scenesmith::physics::postprocess::{PostProcessOptions, post_process};
+use scenesmith::physics::removal::tilt;
+use scenesmith::physics::settle::{SettleOptions, parse_result, request_args};
+use scenesmith::scene::{ObjectKind, Pose};
+use scenesmith::stages::SceneState;
+
+/// A room with a procedural table at (2, 2); returns the state, the table id and its top height.
+fn room_with_table() -> (SceneState, String, f64) {
+    let mut state = room(4.0, 4.0);
+    let table = state.build_asset(&AssetRequest::new("table", 3)).unwrap();
+    let top = state.scene.assets[&table].surfaces[0].center[2];
+    let id = state.add_object(
+        "table",
+        ObjectKind::Furniture,
+        "room_0",
+        &table,
+        Pose::from_xyz_yaw(2.0, 2.0, 0.0, 0.0),
+        floor(),
+    );
+    (state, id, top)
+}
+
+fn translation(state: &SceneState, id: &str) -> nalgebra::Vector3<f64> {
+    state
+        .scene
+        .object(id)
+        .unwrap()
+        .world_from_object
+        .translation()
+}
+
+#[test]
+fn a_box_two_centimetres_above_a_table_lands_on_it() {
+    let (mut state, table, top) = room_with_table();
+    let cube = block("cube", Shape::Box([0.1, 0.1, 0.1]), "wood");
+    let id = place(
+        &mut state,
+        &cube,
+        ObjectKind::Manipuland,
+        Pose::from_xyz_yaw(2.1, 2.0, top + 0.02, 0.3),
+        on(&table),
+    );
+    let pool = pool(1);
+    let report = post_process(&mut state, Some(&pool), &PostProcessOptions::default()).unwrap();
+    assert!(state.scene.removed.is_empty(), "{:?}", state.scene.removed);
+    let p = translation(&state, &id);
+    assert!(
+        (p.z - top).abs() < 1e-3,
+        "box bottom at {} vs table top {top}",
+        p.z
+    );
+    assert!(
+        (p.x - 2.1).abs() < 2e-3 && (p.y - 2.0).abs() < 2e-3,
+        "{p:?}"
+    );
+    let yaw = state.scene.object(&id).unwrap().world_from_object.yaw();
+    assert!((yaw - 0.3).abs() < 0.01);
+    assert_eq!(
+        report.manipuland.settle.len(),
+        1,
+        "one subset: the table and its box"
+    );
+    assert!(report.manipuland.settle[0].at_rest);
+    assert!(max_penetration(&state) <= 1e-4);
+}
+
+#[test]
+fn what_cannot_stand_falls_and_is_removed_with_a_reason() {
+    let (mut state, table, top) = room_with_table();
+    // A tall stick leaning out over the table's edge topples off onto the floor; a cube in the
+    // middle of the table stays where it is.
+    let stick = block("stick", Shape::Box([0.04, 0.04, 0.4]), "wood");
+    let cube = block("cube", Shape::Box([0.1, 0.1, 0.1]), "wood");
+    let table_half_x = {
+        let b = state.scene.assets[&state.scene.object(&table).unwrap().asset].bounds;
+        b[1][0]
+    };
+    let leaning = Pose::from_xyz_rpy(
+        [2.0 + table_half_x - 0.05, 2.0, top + 0.001],
+        [0.0, 0.45, 0.0],
+    );
+    let stick_id = place(
+        &mut state,
+        &stick,
+        ObjectKind::Manipuland,
+        leaning,
+        on(&table),
+    );
+    let cube_id = place(
+        &mut state,
+        &cube,
+        ObjectKind::Manipuland,
+        Pose::from_xyz_yaw(2.0, 2.0, top + 0.001, 0.0),
+        on(&table),
+    );
+    // A tall narrow cabinet tilted 25 degrees falls over, and the cube on top of it with it.
+    let tower = block("tower", Shape::Box([0.25, 0.25, 1.6]), "mdf");
+    let tower_id = place(
+        &mut state,
+        &tower,
+        ObjectKind::Furniture,
+        Pose::from_xyz_rpy([0.8, 1.0, 0.0], [-0.45, 0.0, 0.0]),
+        floor(),
+    );
+    let rider = place(
+        &mut state,
+        &cube,
+        ObjectKind::Manipuland,
+        Pose::from_xyz_rpy([0.8, 1.0, 0.0], [-0.45, 0.0, 0.0])
+            .compose(&Pose::from_xyz(0.0, 0.0, 1.601)),
+        on(&tower_id),
+    );
+    let table_before = translation(&state, &table);
+    let cube_before = translation(&state, &cube_id);
+
+    let pool = pool(2);
+    post_process(&mut state, Some(&pool), &PostProcessOptions::default()).unwrap();
+
+    let reason = |id: &str| {
+        state
+            .scene
+            .removed
+            .iter()
+            .find(|r| r.object == id)
+            .map(|r| (r.stage.clone(), r.reason.clone()))
+    };
+    let (stage, why) = reason(&stick_id).expect("the stick was removed");
+    assert_eq!(stage, "post_process/manipuland");
+    assert!(why.contains("fell off") && why.contains(&table), "{why}");
+    let (stage, why) = reason(&tower_id).expect("the tower was removed");
+    assert_eq!(stage, "post_process/furniture");
+    assert!(why.contains("fell over"), "{why}");
+    let (_, why) = reason(&rider).expect("its load went with it");
+    assert!(why.contains(&tower_id), "{why}");
+    for gone in [&stick_id, &tower_id, &rider] {
+        assert!(state.scene.object(gone).is_none());
+    }
+    // The rest stay put.
+    assert!((translation(&state, &table) - table_before).norm() < 3e-3);
+    let cube_now = translation(&state, &cube_id);
+    assert!(
+        (cube_now - cube_before).norm() < 3e-3,
+        "{cube_now:?} vs {cube_before:?}"
+    );
+    assert!(tilt(&state.scene.object(&table).unwrap().world_from_object) < 0.01);
+}
+
+#[test]
+fn a_worker_killed_during_a_settle_is_replaced_and_the_request_retried() {
+    let (mut state, table, top) = room_with_table();
+    let cube = block("cube", Shape::Box([0.08, 0.08, 0.08]), "wood");
+    for i in 0..6 {
+        place(
+            &mut state,
+            &cube,
+            ObjectKind::Manipuland,
+            Pose::from_xyz_yaw(1.6 + 0.12 * i as f64, 2.0, top + 0.01, 0.0),
+            on(&table),
+        );
+    }
+    let dir = tempfile::tempdir().unwrap();
+    write_scene_dir(dir.path(), &state).unwrap();
+    let pool = pool(1);
+    pool.start_all().unwrap();
+    let pid = pool.pids()[0].expect("worker started");
+    // A fixed 3 s simulation: long enough to be killed in the middle of it.
+    let opts = SettleOptions {
+        max_time: 3.0,
+        stop_at_rest: false,
+        ..SettleOptions::default()
+    };
+    let (op, args) = request_args(
+        &dir.path().join("scene.dmd.yaml"),
+        &dir.path().join("package.xml"),
+        &opts,
+    );
+    let result = std::thread::scope(|s| {
+        let request = s.spawn(|| pool.request(&op, args));
+        std::thread::sleep(Duration::from_millis(800));
+        let killed = std::process::Command::new("kill")
+            .args(["-9", &pid.to_string()])
+            .status()
+            .unwrap();
+        assert!(killed.success());
+        request.join().unwrap()
+    });
+    let result = parse_result(&op, result.expect("retried on a fresh worker")).unwrap();
+    assert!((result.sim_time - 3.0).abs() < 1e-9);
+    assert_eq!(result.free_bodies, 7);
+    assert_eq!(pool.restarts(), 1);
+    assert_ne!(pool.pids()[0], Some(pid), "a new process serves the pool");
+}
