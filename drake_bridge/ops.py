@@ -10,6 +10,7 @@ from pydrake.geometry import Role
 from pydrake.multibody.tree import ModelInstanceIndex
 
 from drake_bridge import BRIDGE_VERSION, PROTOCOL
+from drake_bridge.conformance import op_mujoco_check, op_usd_check
 from drake_bridge.errors import BadRequest
 from drake_bridge.plant_cache import PlantCache
 
@@ -213,4 +214,6 @@ OPS = {
     "load": op_load,
     "penetrations": op_penetrations,
     "collision_report": op_collision_report,
+    "mujoco_check": op_mujoco_check,
+    "usd_check": op_usd_check,
 }

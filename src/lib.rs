@@ -18,6 +18,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod assets;
+pub mod export;
 pub mod formats;
 pub mod geometry;
 pub mod layout;

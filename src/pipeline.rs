@@ -57,6 +57,9 @@ pub enum PipelineError {
     /// The written scene does not load or is not collision-free.
     #[error("scene check failed: {0}")]
     CheckFailed(String),
+    /// An export (MJCF, USD, GLB) could not be written.
+    #[error(transparent)]
+    Export(#[from] crate::export::ExportError),
 }
 
 /// Options of `generate`.
@@ -70,6 +73,8 @@ pub struct GenerateOptions {
     pub out: PathBuf,
     /// Run the Drake check before committing the output.
     pub drake_check: bool,
+    /// Exports written into `export/` (MJCF, USD, GLB; all by default).
+    pub exports: crate::export::ExportSet,
 }
 
 /// Wall time per step, seconds.
@@ -92,6 +97,8 @@ pub struct GenerateSummary {
     pub rust_penetrating_pairs: usize,
     /// Drake check, when run.
     pub check: Option<CheckSummary>,
+    /// Exports written.
+    pub exports: Vec<crate::export::WrittenExport>,
     /// Wall time per step, seconds.
     pub timings: Timings,
 }
@@ -238,6 +245,11 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
         scene_dir::write_scene_dir(staging.path(), &state)
     })?;
 
+    // Exports: MJCF, USD and GLB written from the same state into the staging directory.
+    let exports = timed(&mut timings, "export", || {
+        crate::export::write_exports(staging.path(), &state, &opts.exports)
+    })?;
+
     let check = if opts.drake_check {
         let summary = timed(
             &mut timings,
@@ -280,6 +292,7 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
         furnishing: reports,
         rust_penetrating_pairs: rust_pairs.len(),
         check,
+        exports,
         timings,
     })
 }
