@@ -237,7 +237,9 @@ def _joint_record(stage, xf_cache, kind, path, desc, bodies):
     R1, p1 = _world_frame(xf_cache, stage, desc.body1, desc.localPose1Position,
                           desc.localPose1Orientation)
     if R0 is not None and R1 is not None:
-        rec["frame_gap_m"] = float(np.linalg.norm(p0 - p1))
+        # Offset of frame 1 from frame 0, in frame 0; a prismatic joint's position is the part
+        # along its axis, anything else is a gap between frames that should coincide.
+        d = R0.T @ (p1 - p0)
         if axis_letter in _AXIS:
             k = _AXIS[axis_letter]
             rec["axis"] = axis_letter
@@ -245,10 +247,13 @@ def _joint_record(stage, xf_cache, kind, path, desc, bodies):
             # Relative rotation of frame 1 in frame 0: for a revolute joint a turn about the axis.
             R = R0.T @ R1
             a, b = (k + 1) % 3, (k + 2) % 3
-            rec["position_measured"] = (math.degrees(math.atan2(R[b, a], R[a, a]))
-                                        if kind == "revolute"
-                                        else float((R0.T @ (p1 - p0))[k]))
+            if kind == "prismatic":
+                rec["position_measured"] = float(d[k])
+                d[k] = 0.0
+            elif kind == "revolute":
+                rec["position_measured"] = math.degrees(math.atan2(R[b, a], R[a, a]))
             rec["off_axis_rad"] = float(math.acos(max(-1.0, min(1.0, R[k, k]))))
+        rec["frame_gap_m"] = float(np.linalg.norm(d))
     if hasattr(desc, "limit"):
         rec["limit_enabled"] = bool(desc.limit.enabled)
         rec["lower"] = float(desc.limit.lower)
