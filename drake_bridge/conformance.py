@@ -149,10 +149,12 @@ def op_mujoco_check(args):
             rec["displacement_m"] = float(np.linalg.norm(data.xpos[b] - x0[b]))
             rec["rotation_rad"] = _quat_angle(q0[b], data.xquat[b])
             rec["final_pos"] = [float(v) for v in data.xpos[b]]
+            rec["initial_pos"] = [float(v) for v in x0[b]]
         else:
             rec["displacement_m"] = None
             rec["rotation_rad"] = None
             rec["final_pos"] = None
+            rec["initial_pos"] = [float(v) for v in x0[b]]
     depth = [-float(data.contact.dist[i]) for i in range(data.ncon) if data.contact.dist[i] < 0]
     warnings = {}
     for w in mujoco.mjtWarning.__members__.values():
@@ -171,6 +173,8 @@ def op_mujoco_check(args):
         "finite": finite,
         "warnings": warnings,
         "contacts_at_end": int(data.ncon),
+        "arena_bytes": int(model.narena),
+        "arena_peak_bytes": int(data.maxuse_arena),
         "max_penetration_at_end_m": max(depth) if depth else 0.0,
         "probe": {name: float(data.qpos[qadr]) for name, (_, qadr, _) in probe_dofs.items()},
     }

@@ -541,3 +541,88 @@ fn joints(w: &mut Usda, av: &AssetView<'_>) {
     }
     w.close();
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pipeline::build_scene;
+    use crate::stages::SceneState;
+
+    fn text<'a>(files: &'a [ExportFile], path: &str) -> &'a str {
+        let f = files.iter().find(|f| f.path == path).unwrap();
+        std::str::from_utf8(&f.bytes).unwrap()
+    }
+
+    fn bedroom() -> SceneState {
+        let (mut state, _) =
+            build_scene("a bedroom with a cabinet and books", 4, "usd_unit").unwrap();
+        // Weld the cabinet with its door half open.
+        let cab = state
+            .scene
+            .objects
+            .iter_mut()
+            .find(|o| o.category == "cabinet")
+            .unwrap();
+        cab.welded = true;
+        cab.joint_positions.insert("door_hinge".into(), 0.5);
+        state
+    }
+
+    #[test]
+    fn asset_layers_carry_bodies_colliders_and_joints() {
+        let state = bedroom();
+        let view = SceneView::new(&state).unwrap();
+        let files = files(&view).unwrap();
+        for av in &view.assets {
+            let layer = text(&files, &format!("assets/{}.usda", av.name));
+            assert!(layer.starts_with("#usda 1.0\n"));
+            assert!(layer.contains(&format!("defaultPrim = \"{}\"", av.name)));
+            assert_eq!(
+                layer
+                    .matches("physics:approximation = \"convexHull\"")
+                    .count(),
+                av.asset.collision_pieces(),
+                "{}",
+                av.name
+            );
+            let bodies = layer.matches("\"PhysicsRigidBodyAPI\"").count();
+            let want = if av.asset.is_static {
+                0
+            } else {
+                av.asset.links.len()
+            };
+            assert_eq!(bodies, want, "{}", av.name);
+            if av.asset.category == "cabinet" {
+                assert!(layer.contains("def PhysicsRevoluteJoint \"door_hinge\""));
+                assert!(layer.contains("float physics:upperLimit = 100"));
+                assert!(layer.contains("rel physics:filteredPairs = [</"));
+            }
+        }
+        let scene = text(&files, "scene.usda");
+        assert!(scene.contains("metersPerUnit = 1") && scene.contains("upAxis = \"Z\""));
+        assert!(scene.contains("def PhysicsScene \"PhysicsScene\""));
+        // The welded cabinet: articulation root on the object prim, a weld to the world, and
+        // its door posed at 0.5 rad.
+        let cab = view
+            .objects
+            .iter()
+            .find(|o| o.object.category == "cabinet")
+            .unwrap();
+        let start = scene.find(&format!("def Xform \"{}\"", cab.name)).unwrap();
+        let block = &scene[start..];
+        let block = &block[..block.find("\n    }\n").unwrap()];
+        assert!(block.contains("PhysicsArticulationRootAPI"), "{block}");
+        assert!(block.contains("def PhysicsFixedJoint \"world_weld\""));
+        assert!(block.contains("over \"door\""));
+        // Books are free single-link bodies: no kinematic flag.
+        let book = view
+            .objects
+            .iter()
+            .find(|o| o.object.category == "book")
+            .unwrap();
+        let start = scene.find(&format!("def Xform \"{}\"", book.name)).unwrap();
+        let block = &scene[start..];
+        let block = &block[..block.find("\n    }\n").unwrap()];
+        assert!(!block.contains("kinematicEnabled"), "{block}");
+    }
+}

@@ -85,8 +85,6 @@ pub struct AssetView<'a> {
     pub link_names: Vec<String>,
     /// Safe joint names, unique in the asset, in joint order.
     pub joint_names: Vec<String>,
-    /// Safe names of each link's visual parts.
-    pub visual_names: Vec<Vec<String>>,
     /// Safe file stem of each texture, by the texture's own name.
     pub texture_names: BTreeMap<String, String>,
     /// Per link, the index of the joint whose child it is.
@@ -106,14 +104,6 @@ impl<'a> AssetView<'a> {
         let link_names: Vec<String> = asset.links.iter().map(|l| links.name(&l.name)).collect();
         let mut joints = Namer::default();
         let joint_names = asset.joints.iter().map(|j| joints.name(&j.name)).collect();
-        let visual_names = asset
-            .links
-            .iter()
-            .map(|l| {
-                let mut n = Namer::default();
-                l.visuals.iter().map(|v| n.name(&v.name)).collect()
-            })
-            .collect();
         let mut textures = Namer::default();
         let mut texture_names = BTreeMap::new();
         for v in asset.links.iter().flat_map(|l| &l.visuals) {
@@ -161,7 +151,6 @@ impl<'a> AssetView<'a> {
             visuals,
             link_names,
             joint_names,
-            visual_names,
             texture_names,
             parent_joint,
             parent_link,

@@ -512,3 +512,58 @@ pub fn table(report: &ConformanceReport) -> String {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn table_aligns_columns_and_marks_failures() {
+        let report = ConformanceReport {
+            dir: PathBuf::from("/x"),
+            rows: vec![
+                CheckRow {
+                    format: "mujoco".into(),
+                    check: "masses".into(),
+                    expected: "1 kg".into(),
+                    got: "1 kg".into(),
+                    pass: true,
+                },
+                CheckRow {
+                    format: "usd".into(),
+                    check: "joints".into(),
+                    expected: "2 joints".into(),
+                    got: "1 problem(s): tür".into(),
+                    pass: false,
+                },
+            ],
+            mujoco_stability: None,
+            scene: SceneFacts::default(),
+            facts: BTreeMap::new(),
+            usd_findings: vec![],
+            seconds: BTreeMap::new(),
+            passed: false,
+        };
+        let t = table(&report);
+        let lines: Vec<&str> = t.lines().collect();
+        assert_eq!(lines.len(), 4);
+        assert!(lines[2].ends_with("ok") && lines[3].ends_with("FAIL"));
+        // Columns start at the same character offset on every line (unicode counted as chars).
+        let col = |l: &str, w: &str| l.chars().collect::<String>().find(w).unwrap();
+        assert_eq!(col(lines[2], "1 kg"), col(lines[3], "2 joints"));
+    }
+
+    #[test]
+    fn aabb_helpers() {
+        let a = union(None, &[[0.0, 0.0, 0.0], [1.0, 2.0, 3.0]]).unwrap();
+        let b = union(Some(a), &[[-1.0, 0.5, 0.5]]).unwrap();
+        assert_eq!(b, [[-1.0, 0.0, 0.0], [1.0, 2.0, 3.0]]);
+        assert_eq!(aabb_gap(&a, &b), 1.0);
+        assert!(close(1.0, 1.0 + 1e-10, 1e-9, 0.0) && !close(1.0, 1.1, 1e-9, 0.0));
+        assert_eq!(
+            aabb_of(&serde_json::json!([[0, 1, 2], [3, 4, 5]])),
+            Some([[0.0, 1.0, 2.0], [3.0, 4.0, 5.0]])
+        );
+        assert_eq!(aabb_of(&serde_json::json!(null)), None);
+    }
+}
