@@ -17,6 +17,7 @@
 // Index loops read better than iterator chains in small fixed-size matrix code.
 #![allow(clippy::needless_range_loop)]
 
+pub mod agents;
 pub mod assets;
 pub mod export;
 pub mod formats;

@@ -7,8 +7,9 @@ use anyhow::Context;
 use clap::{Parser, Subcommand};
 use serde_json::json;
 
+use scenesmith::agents::llm::LlmConfig;
 use scenesmith::physics::Bridge;
-use scenesmith::pipeline::{self, GenerateOptions, PipelineError};
+use scenesmith::pipeline::{self, BackendChoice, GenerateOptions, PipelineError};
 
 /// Text prompt -> simulation-ready indoor scene (SDFormat + Drake model directives).
 #[derive(Parser)]
@@ -25,10 +26,10 @@ struct Cli {
 enum Command {
     /// Generate a scene directory from a prompt.
     ///
-    /// Current planner: one room sized from the prompt's room type, with walls, a door and a
-    /// window, furnished with the starter assets (tables, chairs, cabinets, shelves, mugs,
-    /// plates, books) on the floor and on surfaces. Multi-room layouts and the agent-driven
-    /// stages replace this planner in later versions.
+    /// Every placement stage (furniture, wall, ceiling, small objects per supporting entity)
+    /// runs through the designer / critic / orchestrator loop: the built-in offline agents by
+    /// default, an OpenAI-compatible model with --llm-base-url and --llm-model. The layout is
+    /// one room sized from the prompt's room type, with walls, a door and a window.
     Generate {
         /// What the scene should be, e.g. "a kitchen with a table and four chairs".
         prompt: String,
@@ -41,6 +42,11 @@ enum Command {
         /// Skip loading the result in Drake before writing it.
         #[arg(long)]
         no_check: bool,
+        /// Continue a failed run of the same command after its last finished stage.
+        #[arg(long)]
+        resume: bool,
+        #[command(flatten)]
+        llm: LlmArgs,
         /// Exports to write into DIR/export: a comma-separated list of mjcf, usd, glb, or
         /// all / none.
         #[arg(long, default_value = "all")]
@@ -77,6 +83,57 @@ enum Command {
     },
     /// Report versions of the tool, Python, pydrake, solvers, MuJoCo and usd-core.
     Doctor,
+}
+
+/// Language-model backend options (the built-in offline backend is used without them).
+#[derive(clap::Args, Debug, Default)]
+struct LlmArgs {
+    /// Base URL of an OpenAI-compatible API, including the version (e.g. http://localhost:11434/v1).
+    #[arg(long)]
+    llm_base_url: Option<String>,
+    /// Model name at that endpoint.
+    #[arg(long)]
+    llm_model: Option<String>,
+    /// Name of the environment variable holding the API key (none for local servers).
+    #[arg(long)]
+    llm_api_key_env: Option<String>,
+    /// JSON file with LLM settings (base_url, model, api_key_env, timeout_s, max_retries,
+    /// prices, ...); flags override it.
+    #[arg(long)]
+    llm_config: Option<PathBuf>,
+    /// Re-run from a recorded llm_log.jsonl without any network.
+    #[arg(long, conflicts_with_all = ["llm_base_url", "llm_config"])]
+    replay: Option<PathBuf>,
+}
+
+impl LlmArgs {
+    fn choice(&self) -> anyhow::Result<BackendChoice> {
+        if let Some(path) = &self.replay {
+            return Ok(BackendChoice::Replay(path.clone()));
+        }
+        if self.llm_base_url.is_none() && self.llm_config.is_none() && self.llm_model.is_none() {
+            return Ok(BackendChoice::Builtin);
+        }
+        let mut config = match &self.llm_config {
+            Some(p) => LlmConfig::from_file(p)?,
+            None => LlmConfig::default(),
+        };
+        if let Some(u) = &self.llm_base_url {
+            config.base_url = u.clone();
+        }
+        if let Some(m) = &self.llm_model {
+            config.model = m.clone();
+        }
+        if let Some(k) = &self.llm_api_key_env {
+            config.api_key_env = Some(k.clone());
+        }
+        if config.model.is_empty() {
+            anyhow::bail!(
+                "--llm-model (or \"model\" in --llm-config) is required with an LLM endpoint"
+            );
+        }
+        Ok(BackendChoice::Llm(config))
+    }
 }
 
 fn init_logging() {
@@ -123,9 +180,31 @@ fn run_generate(cli_json: bool, opts: GenerateOptions) -> anyhow::Result<ExitCod
             .map(|(c, n)| format!("{n} {c}"))
             .collect();
         eprintln!("  objects: {}", cats.join(", "));
-        for r in &summary.furnishing {
-            for n in &r.notes {
-                eprintln!("  note: {n}");
+        for (noun, wanted, present) in &summary.coverage {
+            if present < wanted {
+                eprintln!("  note: asked for {wanted} {noun}, placed {present}");
+            }
+        }
+        for noun in &summary.unknown_nouns {
+            eprintln!("  note: no asset generator knows {noun:?}; it was left out");
+        }
+        for st in &summary.stages {
+            if let Some(c) = &st.critique {
+                let scores: Vec<String> = c
+                    .scores
+                    .iter()
+                    .map(|s| format!("{} {}", s.category, s.score))
+                    .collect();
+                eprintln!(
+                    "  {} {}{}: {}",
+                    st.stage,
+                    st.room,
+                    st.entity
+                        .as_ref()
+                        .map(|e| format!("/{e}"))
+                        .unwrap_or_default(),
+                    scores.join(", ")
+                );
             }
         }
         if let Some(c) = &summary.check {
@@ -328,18 +407,24 @@ fn main() -> ExitCode {
             out,
             seed,
             no_check,
+            resume,
+            llm,
             export,
         } => match scenesmith::export::ExportSet::parse(&export) {
-            Ok(exports) => run_generate(
-                cli.json,
-                GenerateOptions {
-                    prompt,
-                    seed,
-                    out,
-                    drake_check: !no_check,
-                    exports,
-                },
-            ),
+            Ok(exports) => llm.choice().and_then(|backend| {
+                run_generate(
+                    cli.json,
+                    GenerateOptions {
+                        prompt,
+                        seed,
+                        out,
+                        drake_check: !no_check,
+                        exports,
+                        backend,
+                        resume,
+                    },
+                )
+            }),
             Err(e) => {
                 eprintln!("error: {e}");
                 Ok(ExitCode::from(2))

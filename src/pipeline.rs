@@ -13,6 +13,10 @@ use rand::rngs::ChaCha8Rng;
 use serde::Serialize;
 use serde_json::json;
 
+use crate::agents::llm::{
+    HttpTransport, LlmConfig, LlmError, ReplayTransport, SharedTransport, Transport,
+};
+use crate::agents::{AgentError, RunLog};
 use crate::assets::AssetError;
 use crate::formats::FormatError;
 use crate::formats::scene_dir::{self, names};
@@ -22,7 +26,10 @@ use crate::physics::collision;
 use crate::physics::{Bridge, BridgeError};
 use crate::prompt;
 use crate::scene::{ObjectKind, Pose, Scene, Support, sanitize_name};
-use crate::stages::{SceneState, starter};
+use crate::stages::SceneState;
+use crate::stages::checkpoint::{CheckpointStore, DirCheckpoints, NoCheckpoints};
+use crate::stages::plan::plan_room;
+use crate::stages::run::{Backend, StageSummary, furnish_room_resumable};
 use crate::util::fsx::{FsError, StagingDir};
 
 /// Longest prompt accepted, in characters.
@@ -60,6 +67,35 @@ pub enum PipelineError {
     /// An export (MJCF, USD, GLB) could not be written.
     #[error(transparent)]
     Export(#[from] crate::export::ExportError),
+    /// An agent failed for good (e.g. the LLM endpoint is unreachable after retries).
+    #[error(transparent)]
+    Agent(#[from] AgentError),
+    /// The LLM backend could not be set up.
+    #[error(transparent)]
+    Llm(#[from] LlmError),
+    /// A failure after some stages finished; `--resume` continues from there.
+    #[error(
+        "{source} ({finished} finished stages were saved; run the same command with --resume to continue)"
+    )]
+    Resumable {
+        /// Stages saved.
+        finished: usize,
+        /// The failure.
+        #[source]
+        source: Box<PipelineError>,
+    },
+}
+
+/// Which agents to run.
+#[derive(Debug, Clone, Default)]
+pub enum BackendChoice {
+    /// The built-in offline backend.
+    #[default]
+    Builtin,
+    /// An OpenAI-compatible endpoint.
+    Llm(LlmConfig),
+    /// Replay a recorded `llm_log.jsonl` without a network.
+    Replay(PathBuf),
 }
 
 /// Options of `generate`.
@@ -75,6 +111,26 @@ pub struct GenerateOptions {
     pub drake_check: bool,
     /// Exports written into `export/` (MJCF, USD, GLB; all by default).
     pub exports: crate::export::ExportSet,
+    /// Which agents run the stages.
+    pub backend: BackendChoice,
+    /// Continue after the stages an earlier, failed run of the same request finished.
+    pub resume: bool,
+}
+
+/// Identifies a request for checkpoints: the same tool version, prompt, seed and backend.
+fn fingerprint(opts: &GenerateOptions) -> String {
+    let backend = match &opts.backend {
+        BackendChoice::Builtin => "builtin".to_string(),
+        BackendChoice::Llm(c) => format!("llm {} {}", c.base_url, c.model),
+        BackendChoice::Replay(p) => format!("replay {}", p.display()),
+    };
+    let key = format!(
+        "{}\n{}\n{}\n{backend}",
+        env!("CARGO_PKG_VERSION"),
+        opts.prompt,
+        opts.seed
+    );
+    blake3::hash(key.as_bytes()).to_hex().to_string()
 }
 
 /// Wall time per step, seconds.
@@ -91,8 +147,12 @@ pub struct GenerateSummary {
     pub objects_per_kind: BTreeMap<String, usize>,
     /// Object count per category.
     pub objects_per_category: BTreeMap<String, usize>,
-    /// Requested vs placed, and notes.
-    pub furnishing: Vec<starter::StarterReport>,
+    /// Scores kept by every stage run.
+    pub stages: Vec<StageSummary>,
+    /// Explicitly requested objects: (noun, wanted, present).
+    pub coverage: Vec<(String, u32, u32)>,
+    /// Nouns of the prompt no generator knows.
+    pub unknown_nouns: Vec<String>,
     /// Penetrating pairs found by the in-process (parry3d) check.
     pub rust_penetrating_pairs: usize,
     /// Drake check, when run.
@@ -175,20 +235,49 @@ fn timed<T>(timings: &mut Timings, step: &str, f: impl FnOnce() -> T) -> T {
     out
 }
 
-/// Builds the scene of a prompt in memory (no files): layout and furnishing.
+/// What [`build_scene`] produced besides the scene.
+#[derive(Debug, Clone, Default)]
+pub struct BuildReport {
+    /// Every tool call, decision and checkpoint.
+    pub log: RunLog,
+    /// Scores kept by every stage run.
+    pub stages: Vec<StageSummary>,
+    /// Explicitly requested objects: (noun, wanted, present).
+    pub coverage: Vec<(String, u32, u32)>,
+    /// Nouns of the prompt no generator knows.
+    pub unknown_nouns: Vec<String>,
+}
+
+/// Builds the scene of a prompt in memory (no files): layout, then every placement stage of
+/// every room through the agent loop with `backend`.
 pub fn build_scene(
     prompt_text: &str,
     seed: u64,
     package_name: &str,
-) -> Result<(SceneState, Vec<starter::StarterReport>), PipelineError> {
+    backend: &Backend,
+) -> Result<(SceneState, BuildReport), PipelineError> {
+    build_scene_with(prompt_text, seed, package_name, backend, &mut NoCheckpoints)
+}
+
+/// [`build_scene`] with stage checkpoints: finished stages found in `store` are skipped, every
+/// stage that finishes is saved.
+pub fn build_scene_with(
+    prompt_text: &str,
+    seed: u64,
+    package_name: &str,
+    backend: &Backend,
+    store: &mut dyn CheckpointStore,
+) -> Result<(SceneState, BuildReport), PipelineError> {
     validate_prompt(prompt_text)?;
     let reading = prompt::read(prompt_text);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut scene = Scene::new(prompt_text, seed, package_name);
-    scene
-        .provenance
-        .backends
-        .insert("designer".into(), "builtin-starter".into());
+    for role in ["designer", "critic", "orchestrator"] {
+        scene
+            .provenance
+            .backends
+            .insert(role.into(), backend.name());
+    }
     scene
         .provenance
         .backends
@@ -218,47 +307,123 @@ pub fn build_scene(
         joint_positions: BTreeMap::new(),
     });
 
-    let report = starter::furnish_room(&mut state, &room_id, &reading, &mut rng)?;
-    state.prune_assets();
-    Ok((state, vec![report]))
+    let plan = plan_room(&reading);
+    let mut report = BuildReport {
+        unknown_nouns: plan.unknown.clone(),
+        ..BuildReport::default()
+    };
+    let requested = plan.requested();
+    let (state, stages) =
+        furnish_room_resumable(state, &room_id, plan, backend, &mut report.log, store)?;
+    report.stages = stages;
+    report.coverage = requested
+        .into_iter()
+        .map(|(noun, wanted)| {
+            let cat = crate::stages::StageState::category_of(&noun)
+                .unwrap_or(&noun)
+                .to_string();
+            let present = state
+                .scene
+                .objects
+                .iter()
+                .filter(|o| o.category == cat)
+                .count() as u32;
+            (noun, wanted, present)
+        })
+        .collect();
+    Ok((state, report))
 }
 
-/// Runs the whole pipeline and writes the scene directory.
-pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError> {
-    validate_prompt(&opts.prompt)?;
-    let mut timings = Timings::new();
-    let t_total = Instant::now();
-    // Fails before any work when the output cannot be written.
-    let staging = StagingDir::new(&opts.out)?;
-    let package = package_name_for(staging.target());
+/// Sets up the backend of a run; the LLM log goes to `log_dir/llm_log.jsonl`.
+fn make_backend(
+    choice: &BackendChoice,
+    log_dir: &Path,
+) -> Result<(Backend, Option<SharedTransport>), PipelineError> {
+    let shared = |t: Box<dyn Transport>| -> SharedTransport {
+        std::sync::Arc::new(std::sync::Mutex::new(t))
+    };
+    Ok(match choice {
+        BackendChoice::Builtin => (Backend::Builtin, None),
+        BackendChoice::Llm(config) => {
+            let log =
+                crate::agents::llm::transport::LogWriter::open(&log_dir.join("llm_log.jsonl"))?;
+            let t = shared(Box::new(HttpTransport::new(config.clone(), Some(log))?));
+            (
+                Backend::Llm {
+                    transport: t.clone(),
+                    config: config.clone(),
+                },
+                Some(t),
+            )
+        }
+        BackendChoice::Replay(path) => {
+            let replay = ReplayTransport::open(path, LlmConfig::default())?;
+            let config = LlmConfig {
+                model: replay.recorded_model().unwrap_or_default(),
+                ..LlmConfig::default()
+            };
+            // Keep the replayed log with the scene, like a recorded run.
+            let _ = std::fs::copy(path, log_dir.join("llm_log.jsonl"));
+            let t = shared(Box::new(replay));
+            (
+                Backend::Llm {
+                    transport: t.clone(),
+                    config,
+                },
+                Some(t),
+            )
+        }
+    })
+}
 
-    let (mut state, reports) = timed(&mut timings, "plan", || {
-        build_scene(&opts.prompt, opts.seed, &package)
-    })?;
+type Finished = (
+    PathBuf,
+    SceneState,
+    BuildReport,
+    Vec<collision::PairPenetration>,
+    Option<CheckSummary>,
+    Vec<crate::export::WrittenExport>,
+);
 
-    let rust_pairs = timed(&mut timings, "rust_collision_check", || {
+/// Writes a built scene into the staging directory, checks it in Drake and commits it.
+fn finish_run(
+    opts: &GenerateOptions,
+    staging: StagingDir,
+    transport: &Option<SharedTransport>,
+    mut state: SceneState,
+    report: BuildReport,
+    timings: &mut Timings,
+) -> Result<Finished, PipelineError> {
+    if let Some(t) = transport
+        && let Ok(t) = t.lock()
+    {
+        state.scene.llm_usage = t.usage();
+    }
+
+    let rust_pairs = timed(timings, "rust_collision_check", || {
         collision::posed_objects(&state.scene, &state.assets)
             .map(|objs| collision::penetrating_pairs(&objs, 1e-3))
     })?;
 
-    timed(&mut timings, "write", || {
-        scene_dir::write_scene_dir(staging.path(), &state)
+    timed(timings, "write", || -> Result<(), PipelineError> {
+        scene_dir::write_scene_dir(staging.path(), &state)?;
+        crate::util::fsx::write_atomic(
+            &staging.path().join("agent_log.jsonl"),
+            report.log.to_jsonl().as_bytes(),
+        )?;
+        Ok(())
     })?;
 
     // Exports: MJCF, USD and GLB written from the same state into the staging directory.
-    let exports = timed(&mut timings, "export", || {
+    let exports = timed(timings, "export", || {
         crate::export::write_exports(staging.path(), &state, &opts.exports)
     })?;
 
     let check = if opts.drake_check {
-        let summary = timed(
-            &mut timings,
-            "drake_check",
-            || -> Result<_, PipelineError> {
-                let mut bridge = Bridge::from_env()?;
-                check_dir(&mut bridge, staging.path(), 1e-3)
-            },
-        )?;
+        let summary = timed(timings, "drake_check", || -> Result<_, PipelineError> {
+            let mut bridge = Bridge::from_env()?;
+            check_dir(&mut bridge, staging.path(), 1e-3)
+        })?;
         if !summary.problems.is_empty() {
             return Err(PipelineError::CheckFailed(summary.problems.join("; ")));
         }
@@ -270,6 +435,44 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
     };
 
     let out = staging.commit()?;
+    Ok((out, state, report, rust_pairs, check, exports))
+}
+
+/// Runs the whole pipeline and writes the scene directory.
+pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError> {
+    validate_prompt(&opts.prompt)?;
+    let mut timings = Timings::new();
+    let t_total = Instant::now();
+    // Fails before any work when the output cannot be written.
+    let staging = StagingDir::new(&opts.out)?;
+    let package = package_name_for(staging.target());
+
+    let (backend, transport) = make_backend(&opts.backend, staging.path())?;
+    let mut checkpoints = DirCheckpoints::open(staging.target(), &fingerprint(opts), opts.resume);
+    let built = timed(&mut timings, "stages", || {
+        build_scene_with(
+            &opts.prompt,
+            opts.seed,
+            &package,
+            &backend,
+            &mut checkpoints,
+        )
+    });
+    // Everything after the stages: a failure keeps the checkpoints for --resume.
+    let finished = built.and_then(|(state, report)| {
+        finish_run(opts, staging, &transport, state, report, &mut timings)
+    });
+    let (out, state, report, rust_pairs, check, exports) = match finished {
+        Ok(v) => v,
+        Err(e) if checkpoints.finished().is_empty() => return Err(e),
+        Err(e) => {
+            return Err(PipelineError::Resumable {
+                finished: checkpoints.finished().len(),
+                source: Box::new(e),
+            });
+        }
+    };
+    checkpoints.clear();
     timings.insert("total".into(), t_total.elapsed().as_secs_f64());
     let mut per_kind = BTreeMap::new();
     let mut per_cat = BTreeMap::new();
@@ -289,7 +492,9 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
             .collect(),
         objects_per_kind: per_kind,
         objects_per_category: per_cat,
-        furnishing: reports,
+        stages: report.stages,
+        coverage: report.coverage,
+        unknown_nouns: report.unknown_nouns,
         rust_penetrating_pairs: rust_pairs.len(),
         check,
         exports,

@@ -9,13 +9,14 @@ use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::physics::Bridge;
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::ObjectKind;
+use scenesmith::stages::run::Backend;
 use serde_json::json;
 
 #[test]
 fn drake_loads_what_rust_wrote() {
     let prompt =
         "A kitchen with a table, four chairs, a cabinet, a shelf with books, plates and mugs.";
-    let (state, _) = build_scene(prompt, 4, "round_trip").unwrap();
+    let (state, _) = build_scene(prompt, 4, "round_trip", &Backend::Builtin).unwrap();
     let dir = tempfile::tempdir().unwrap();
     write_scene_dir(dir.path(), &state).unwrap();
 
@@ -127,6 +128,7 @@ fn furniture_welded_variant_loads_with_only_manipulands_free() {
         "An office with a table, a chair and a shelf with books.",
         2,
         "welded_variant",
+        &Backend::Builtin,
     )
     .unwrap();
     let dir = tempfile::tempdir().unwrap();

@@ -30,7 +30,13 @@ fn walk(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
 
 #[test]
 fn hostile_names_give_valid_escaped_contained_files() {
-    let (mut state, _) = build_scene(PROMPT, 1, "names_test").unwrap();
+    let (mut state, _) = build_scene(
+        PROMPT,
+        1,
+        "names_test",
+        &scenesmith::stages::run::Backend::Builtin,
+    )
+    .unwrap();
     let room = state.scene.rooms[0].id.clone();
 
     // An asset whose every name is hostile, with a texture.

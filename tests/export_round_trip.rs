@@ -20,7 +20,13 @@ fn sum(values: impl Iterator<Item = f64>) -> f64 {
 #[test]
 fn masses_colliders_and_objects_match_in_every_format() {
     let prompt = common::dev_prompt("object_density_03");
-    let (state, _) = build_scene(&prompt, 7, "round_trip_exports").unwrap();
+    let (state, _) = build_scene(
+        &prompt,
+        7,
+        "round_trip_exports",
+        &scenesmith::stages::run::Backend::Builtin,
+    )
+    .unwrap();
     let dir = tempfile::tempdir().unwrap();
     write_all(dir.path(), &state);
 

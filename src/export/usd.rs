@@ -554,8 +554,13 @@ mod tests {
     }
 
     fn bedroom() -> SceneState {
-        let (mut state, _) =
-            build_scene("a bedroom with a cabinet and books", 4, "usd_unit").unwrap();
+        let (mut state, _) = build_scene(
+            "a bedroom with a cabinet and books",
+            4,
+            "usd_unit",
+            &crate::stages::run::Backend::Builtin,
+        )
+        .unwrap();
         // Weld the cabinet with its door half open.
         let cab = state
             .scene

@@ -113,6 +113,7 @@ pub fn read_scene(dir: &Path) -> Result<Scene, FormatError> {
 mod tests {
     use super::*;
     use crate::pipeline::build_scene;
+    use crate::stages::run::Backend;
 
     #[test]
     fn written_scene_loads_back_with_the_same_assets() {
@@ -120,6 +121,7 @@ mod tests {
             "a kitchen with a table, four chairs, a cabinet, a shelf with books, plates and mugs",
             3,
             "load_back",
+            &Backend::Builtin,
         )
         .unwrap();
         let dir = tempfile::tempdir().unwrap();
@@ -155,7 +157,8 @@ mod tests {
 
     #[test]
     fn a_corrupt_asset_names_the_asset() {
-        let (state, _) = build_scene("an office with a table", 1, "corrupt").unwrap();
+        let (state, _) =
+            build_scene("an office with a table", 1, "corrupt", &Backend::Builtin).unwrap();
         let dir = tempfile::tempdir().unwrap();
         write_scene_dir(dir.path(), &state).unwrap();
         let table = state

@@ -1,54 +1,154 @@
-//! In-loop collision checks in Rust (parry3d) on the same convex pieces Drake uses.
+//! In-loop collision checks in Rust on the same convex pieces Drake uses.
+//!
+//! Penetration depth between two convex polyhedra is computed exactly with the separating axis
+//! theorem (face normals of both pieces and cross products of their edge directions): the
+//! minimum overlap over those axes is the minimum translation distance. parry3d's EPA was
+//! measured to return wrong depths or no contact at all for deep overlaps of identical boxes
+//! (see `tests::deep_overlaps_are_exact`), so it is not used for depths.
 
 use std::collections::BTreeMap;
 
-use nalgebra::Point3;
-use parry3d_f64::math::{Pose as PPose, Rotation as PRot, Vector as PVec};
-use parry3d_f64::shape::ConvexPolyhedron;
+use nalgebra::{Point3, Vector3};
 
 use crate::assets::{Asset, link_poses};
-use crate::geometry::GeometryError;
+use crate::geometry::{ConvexPiece, GeometryError};
 use crate::scene::{Pose, Scene};
 
-/// Converts a pose to parry's (glam) representation.
-pub fn to_parry_pose(pose: &Pose) -> PPose {
-    let t = pose.translation();
-    let q = pose.rotation();
-    PPose::from_parts(
-        PVec::new(t.x, t.y, t.z),
-        PRot::from_xyzw(q.i, q.j, q.k, q.w),
-    )
+/// A convex piece posed in the world with the axes the separating-axis test needs.
+#[derive(Debug, Clone)]
+pub struct PosedPiece {
+    /// Hull vertices, world frame.
+    pub vertices: Vec<Vector3<f64>>,
+    /// Distinct face normal directions, world frame (unit).
+    pub normals: Vec<Vector3<f64>>,
+    /// Distinct edge directions, world frame (unit).
+    pub edges: Vec<Vector3<f64>>,
+    /// World bounds.
+    pub lo: Vector3<f64>,
+    /// World bounds.
+    pub hi: Vector3<f64>,
 }
 
-/// Penetration depth (m, positive when overlapping) of two posed convex shapes, or `None` when
-/// they are apart.
+fn push_direction(list: &mut Vec<Vector3<f64>>, d: Vector3<f64>) {
+    let Some(u) = d.try_normalize(1e-12) else {
+        return;
+    };
+    if !list.iter().any(|v| v.cross(&u).norm() < 1e-9) {
+        list.push(u);
+    }
+}
+
+impl PosedPiece {
+    /// Poses `piece` by `world_from_piece`.
+    pub fn new(piece: &ConvexPiece, world_from_piece: &Pose) -> PosedPiece {
+        let vertices: Vec<Vector3<f64>> = piece
+            .vertices
+            .iter()
+            .map(|v| {
+                world_from_piece
+                    .transform_point(&Point3::new(v[0], v[1], v[2]))
+                    .coords
+            })
+            .collect();
+        let mut normals = Vec::new();
+        let mut edges = Vec::new();
+        for t in &piece.triangles {
+            let [a, b, c] = t.map(|i| vertices[i as usize]);
+            push_direction(&mut normals, (b - a).cross(&(c - a)));
+            push_direction(&mut edges, b - a);
+            push_direction(&mut edges, c - b);
+            push_direction(&mut edges, a - c);
+        }
+        let mut lo = Vector3::repeat(f64::INFINITY);
+        let mut hi = Vector3::repeat(f64::NEG_INFINITY);
+        for v in &vertices {
+            lo = lo.inf(v);
+            hi = hi.sup(v);
+        }
+        PosedPiece {
+            vertices,
+            normals,
+            edges,
+            lo,
+            hi,
+        }
+    }
+
+    fn project(&self, axis: &Vector3<f64>) -> (f64, f64) {
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        for v in &self.vertices {
+            let p = v.dot(axis);
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        (lo, hi)
+    }
+}
+
+/// Penetration depth (m) and direction (unit, pushing `b` out of `a`) of two posed convex
+/// pieces, or `None` when they are separated or just touching.
+pub fn sat_penetration(a: &PosedPiece, b: &PosedPiece) -> Option<(f64, Vector3<f64>)> {
+    if (0..3).any(|k| a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) {
+        return None;
+    }
+    let mut best = f64::INFINITY;
+    let mut best_axis = Vector3::z();
+    let mut test = |axis: Vector3<f64>| -> bool {
+        let (a0, a1) = a.project(&axis);
+        let (b0, b1) = b.project(&axis);
+        let push_pos = a1 - b0; // move b along +axis by this much
+        let push_neg = b1 - a0; // move b along -axis by this much
+        let overlap = push_pos.min(push_neg);
+        if overlap <= 0.0 {
+            return false;
+        }
+        if overlap < best {
+            best = overlap;
+            best_axis = if push_pos <= push_neg { axis } else { -axis };
+        }
+        true
+    };
+    for n in a.normals.iter().chain(&b.normals) {
+        if !test(*n) {
+            return None;
+        }
+    }
+    for ea in &a.edges {
+        for eb in &b.edges {
+            if let Some(axis) = ea.cross(eb).try_normalize(1e-9)
+                && !test(axis)
+            {
+                return None;
+            }
+        }
+    }
+    Some((best, best_axis))
+}
+
+/// Penetration depth of two convex pieces at the given poses (`None` when apart).
 pub fn penetration(
-    a: &ConvexPolyhedron,
+    a: &ConvexPiece,
     world_from_a: &Pose,
-    b: &ConvexPolyhedron,
+    b: &ConvexPiece,
     world_from_b: &Pose,
 ) -> Option<f64> {
-    let c = parry3d_f64::query::contact(
-        &to_parry_pose(world_from_a),
-        a,
-        &to_parry_pose(world_from_b),
-        b,
-        0.0,
+    sat_penetration(
+        &PosedPiece::new(a, world_from_a),
+        &PosedPiece::new(b, world_from_b),
     )
-    .ok()
-    .flatten()?;
-    (c.dist < 0.0).then_some(-c.dist)
+    .map(|(d, _)| d)
 }
 
 /// The convex pieces of one object, posed in the world.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct PosedObject {
     /// Object id.
     pub id: String,
     /// Static geometry (architecture).
     pub is_static: bool,
-    /// Pieces with their world poses.
-    pub pieces: Vec<(ConvexPolyhedron, Pose)>,
+    /// Pieces in the world.
+    pub pieces: Vec<PosedPiece>,
     /// World bounds of all pieces.
     pub bounds: ([f64; 3], [f64; 3]),
 }
@@ -63,31 +163,44 @@ pub fn posed_objects(
         let Some(asset) = assets.get(&obj.asset) else {
             continue;
         };
-        let model_from_links = link_poses(asset, &obj.joint_positions);
-        let mut pieces = Vec::new();
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for (link, model_from_link) in asset.links.iter().zip(&model_from_links) {
-            let world_from_link = obj.world_from_object.compose(model_from_link);
-            for piece in &link.collisions {
-                for v in &piece.vertices {
-                    let w = world_from_link.transform_point(&Point3::new(v[0], v[1], v[2]));
-                    for i in 0..3 {
-                        lo[i] = lo[i].min(w[i]);
-                        hi[i] = hi[i].max(w[i]);
-                    }
-                }
-                pieces.push((piece.to_parry()?, world_from_link));
-            }
-        }
-        out.push(PosedObject {
-            id: obj.id.clone(),
-            is_static: asset.is_static,
-            pieces,
-            bounds: (lo, hi),
-        });
+        out.push(posed_object(
+            &obj.id,
+            asset,
+            &obj.world_from_object,
+            &obj.joint_positions,
+        ));
     }
     Ok(out)
+}
+
+/// Poses the pieces of one asset instance.
+pub fn posed_object(
+    id: &str,
+    asset: &Asset,
+    world_from_object: &Pose,
+    joints: &BTreeMap<String, f64>,
+) -> PosedObject {
+    let model_from_links = link_poses(asset, joints);
+    let mut pieces = Vec::new();
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for (link, model_from_link) in asset.links.iter().zip(&model_from_links) {
+        let world_from_link = world_from_object.compose(model_from_link);
+        for piece in &link.collisions {
+            let p = PosedPiece::new(piece, &world_from_link);
+            for k in 0..3 {
+                lo[k] = lo[k].min(p.lo[k]);
+                hi[k] = hi[k].max(p.hi[k]);
+            }
+            pieces.push(p);
+        }
+    }
+    PosedObject {
+        id: id.to_string(),
+        is_static: asset.is_static,
+        pieces,
+        bounds: (lo, hi),
+    }
 }
 
 /// A penetrating object pair.
@@ -101,6 +214,23 @@ pub struct PairPenetration {
     pub depth: f64,
 }
 
+/// Deepest penetration between two posed objects (0 when apart).
+pub fn object_penetration(a: &PosedObject, b: &PosedObject) -> f64 {
+    let overlap = (0..3).all(|k| a.bounds.0[k] <= b.bounds.1[k] && b.bounds.0[k] <= a.bounds.1[k]);
+    if !overlap {
+        return 0.0;
+    }
+    let mut deepest: f64 = 0.0;
+    for pa in &a.pieces {
+        for pb in &b.pieces {
+            if let Some((d, _)) = sat_penetration(pa, pb) {
+                deepest = deepest.max(d);
+            }
+        }
+    }
+    deepest
+}
+
 /// Every object pair penetrating deeper than `threshold` metres (static-static pairs skipped).
 pub fn penetrating_pairs(objects: &[PosedObject], threshold: f64) -> Vec<PairPenetration> {
     let mut out = Vec::new();
@@ -109,24 +239,12 @@ pub fn penetrating_pairs(objects: &[PosedObject], threshold: f64) -> Vec<PairPen
             if a.is_static && b.is_static {
                 continue;
             }
-            let overlap =
-                (0..3).all(|k| a.bounds.0[k] <= b.bounds.1[k] && b.bounds.0[k] <= a.bounds.1[k]);
-            if !overlap {
-                continue;
-            }
-            let mut deepest: f64 = 0.0;
-            for (pa, xa) in &a.pieces {
-                for (pb, xb) in &b.pieces {
-                    if let Some(d) = penetration(pa, xa, pb, xb) {
-                        deepest = deepest.max(d);
-                    }
-                }
-            }
-            if deepest > threshold {
+            let depth = object_penetration(a, b);
+            if depth > threshold {
                 out.push(PairPenetration {
                     a: a.id.clone(),
                     b: b.id.clone(),
-                    depth: deepest,
+                    depth,
                 });
             }
         }
@@ -137,22 +255,65 @@ pub fn penetrating_pairs(objects: &[PosedObject], threshold: f64) -> Vec<PairPen
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::ConvexPiece;
+
+    fn cube() -> ConvexPiece {
+        ConvexPiece::cuboid([0.0; 3], [1.0; 3]).unwrap()
+    }
 
     #[test]
     fn overlapping_boxes_report_depth() {
-        let a = ConvexPiece::cuboid([0.0; 3], [1.0; 3])
-            .unwrap()
-            .to_parry()
-            .unwrap();
-        let b = ConvexPiece::cuboid([0.0; 3], [1.0; 3])
-            .unwrap()
-            .to_parry()
-            .unwrap();
-        let d = penetration(&a, &Pose::IDENTITY, &b, &Pose::from_xyz(0.97, 0.0, 0.0)).unwrap();
+        let d = penetration(
+            &cube(),
+            &Pose::IDENTITY,
+            &cube(),
+            &Pose::from_xyz(0.97, 0.0, 0.0),
+        )
+        .unwrap();
         assert!((d - 0.03).abs() < 1e-9, "{d}");
-        assert!(penetration(&a, &Pose::IDENTITY, &b, &Pose::from_xyz(1.01, 0.0, 0.0)).is_none());
+        assert!(
+            penetration(
+                &cube(),
+                &Pose::IDENTITY,
+                &cube(),
+                &Pose::from_xyz(1.01, 0.0, 0.0)
+            )
+            .is_none()
+        );
         let rotated = Pose::from_xyz_yaw(0.0, 0.0, 1.6, 0.7);
-        assert!(penetration(&a, &Pose::IDENTITY, &b, &rotated).is_none());
+        assert!(penetration(&cube(), &Pose::IDENTITY, &cube(), &rotated).is_none());
+    }
+
+    /// Regression: parry3d's EPA returned no contact at dz = 0.05 and depths of 0.017 and
+    /// 0.004 m (instead of 0.03) for these two identical thin boxes.
+    #[test]
+    fn deep_overlaps_are_exact() {
+        let book = ConvexPiece::cuboid([0.0, 0.0, 0.115], [0.03, 0.16, 0.23]).unwrap();
+        for dz in [0.0, 0.05, 0.1, 0.2] {
+            let d =
+                penetration(&book, &Pose::IDENTITY, &book, &Pose::from_xyz(0.0, 0.0, dz)).unwrap();
+            assert!((d - 0.03).abs() < 1e-9, "dz {dz}: {d}");
+        }
+        assert!(
+            penetration(
+                &book,
+                &Pose::IDENTITY,
+                &book,
+                &Pose::from_xyz(0.0, 0.0, 0.231)
+            )
+            .is_none()
+        );
+    }
+
+    #[test]
+    fn edge_edge_contact_depth() {
+        // Two cubes crossed at 45 degrees about different axes meet edge to edge.
+        let a = Pose::from_xyz_rpy([0.0, 0.0, 0.0], [std::f64::consts::FRAC_PI_4, 0.0, 0.0]);
+        let b = Pose::from_xyz_rpy([0.0, 0.0, 1.4], [0.0, std::f64::consts::FRAC_PI_4, 0.0]);
+        let d = penetration(&cube(), &a, &cube(), &b).unwrap();
+        // Edges at z = +-0.7071 each: overlap 2 * 0.7071 - 1.4.
+        assert!((d - (2.0 * 0.5f64.sqrt() - 1.4)).abs() < 1e-9, "{d}");
+        let (_, n) =
+            sat_penetration(&PosedPiece::new(&cube(), &a), &PosedPiece::new(&cube(), &b)).unwrap();
+        assert!(n.z > 0.99, "pushes b up: {n:?}");
     }
 }

@@ -41,6 +41,24 @@ pub struct Scene {
     /// Results of the physics checks run on the written scene.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub checks: Option<serde_json::Value>,
+    /// Language-model usage per stage (empty for the built-in backend).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub llm_usage: BTreeMap<String, StageUsage>,
+}
+
+/// Requests, retries, tokens and cost of one stage's language-model calls.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct StageUsage {
+    /// Successful requests.
+    pub requests: u64,
+    /// Failed attempts that were retried.
+    pub retries: u64,
+    /// Input tokens reported by the endpoint.
+    pub prompt_tokens: u64,
+    /// Output tokens reported by the endpoint.
+    pub completion_tokens: u64,
+    /// Cost at the configured prices, USD.
+    pub cost_usd: f64,
 }
 
 /// Where a scene came from. Deliberately holds no timestamps or host names: the same prompt,
@@ -369,6 +387,7 @@ impl Scene {
             removed: Vec::new(),
             ids: IdAllocator::new(),
             checks: None,
+            llm_usage: BTreeMap::new(),
         }
     }
 

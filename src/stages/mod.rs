@@ -3,12 +3,26 @@
 //! [`SceneState`] is the scene plus the built assets its objects instantiate; every stage edits
 //! it through the same few operations (build an asset, add, move or remove an object).
 
+pub mod ceiling;
+pub mod checkpoint;
+pub mod common;
+pub mod furniture;
+pub mod furniture_builtin;
+pub mod manipuland;
+pub mod manipuland_builtin;
 pub mod placement;
-pub mod starter;
+pub mod plan;
+pub mod room;
+pub mod run;
+pub mod wall;
 
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
-use crate::assets::procedural::{self, AssetRequest};
+use serde::{Deserialize, Serialize};
+
+use crate::agents::ToolError;
+use crate::assets::procedural::{self, AssetRequest, SupportClass};
 use crate::assets::{Asset, AssetError};
 use crate::scene::{ObjectKind, Pose, Scene, SceneObject, Support};
 
@@ -111,5 +125,175 @@ impl SceneState {
             self.scene.objects.iter().map(|o| o.asset.clone()).collect();
         self.assets.retain(|k, _| used.contains(k));
         self.scene.assets.retain(|k, _| used.contains(k));
+    }
+}
+
+/// The placement stages, in pipeline order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Hash, PartialOrd, Ord)]
+#[serde(rename_all = "snake_case")]
+pub enum StageKind {
+    /// Rooms and architecture.
+    Layout,
+    /// Floor furniture.
+    Furniture,
+    /// Wall-mounted objects.
+    Wall,
+    /// Ceiling objects.
+    Ceiling,
+    /// Small objects on surfaces.
+    Manipuland,
+}
+
+impl StageKind {
+    /// The stage's name as used in logs, prompts and `scene.json`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            StageKind::Layout => "layout",
+            StageKind::Furniture => "furniture",
+            StageKind::Wall => "wall",
+            StageKind::Ceiling => "ceiling",
+            StageKind::Manipuland => "manipuland",
+        }
+    }
+
+    /// The object kind this stage creates.
+    pub fn object_kind(self) -> ObjectKind {
+        match self {
+            StageKind::Layout => ObjectKind::Architecture,
+            StageKind::Furniture => ObjectKind::Furniture,
+            StageKind::Wall => ObjectKind::Wall,
+            StageKind::Ceiling => ObjectKind::Ceiling,
+            StageKind::Manipuland => ObjectKind::Manipuland,
+        }
+    }
+
+    fn support(self) -> Option<SupportClass> {
+        match self {
+            StageKind::Layout => None,
+            StageKind::Furniture => Some(SupportClass::Floor),
+            StageKind::Wall => Some(SupportClass::Wall),
+            StageKind::Ceiling => Some(SupportClass::Ceiling),
+            StageKind::Manipuland => Some(SupportClass::Surface),
+        }
+    }
+}
+
+fn stage_for_support(s: SupportClass) -> &'static str {
+    match s {
+        SupportClass::Floor => "furniture",
+        SupportClass::Wall => "wall",
+        SupportClass::Ceiling => "ceiling",
+        SupportClass::Surface => "manipuland",
+    }
+}
+
+/// An asset chosen for a description.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+pub struct RoutedAsset {
+    /// Asset id.
+    pub asset: String,
+    /// Category it was built as.
+    pub category: String,
+    /// Size (x, y, z), metres.
+    pub size: [f64; 3],
+}
+
+/// The state a placement stage's tools work on: the scene, the room (and supporting entity)
+/// in focus, and what the room should contain.
+#[derive(Debug, Clone)]
+pub struct StageState {
+    /// Scene and assets.
+    pub scene: SceneState,
+    /// Which stage.
+    pub kind: StageKind,
+    /// Room in focus.
+    pub room: String,
+    /// Supporting entity in focus (manipuland stage), if any.
+    pub entity: Option<String>,
+    /// What the room should contain.
+    pub plan: Arc<plan::RoomPlan>,
+    /// Assets requested so far (drives per-request seeds).
+    pub requests: u64,
+}
+
+impl StageState {
+    /// The category a free-text description names: the longest phrase (up to three words)
+    /// that resolves, preferring later words (the head noun comes last in English).
+    pub fn category_of(description: &str) -> Option<&'static str> {
+        let tokens = crate::prompt::tokenize(description);
+        for len in (1..=3).rev() {
+            for start in (0..tokens.len().saturating_sub(len - 1)).rev() {
+                let mut words: Vec<String> = tokens[start..start + len].to_vec();
+                if let Some(last) = words.last_mut() {
+                    *last = crate::prompt::singular(last);
+                }
+                if let Some(c) = procedural::resolve_category(&words.join(" ")) {
+                    return Some(c);
+                }
+            }
+        }
+        None
+    }
+
+    /// Builds (or reuses) the asset for `description`, refusing objects of another stage with
+    /// a reason the designer can act on.
+    pub fn route_asset(
+        &mut self,
+        description: &str,
+        size: Option<[f64; 3]>,
+    ) -> Result<RoutedAsset, ToolError> {
+        let category = Self::category_of(description).ok_or_else(|| {
+            ToolError::failed(format!(
+                "no asset matches {description:?}; known categories: {}",
+                procedural::categories().join(", ")
+            ))
+        })?;
+        let prior = procedural::prior(category)
+            .ok_or_else(|| ToolError::failed(format!("no prior for {category}")))?;
+        if let Some(want) = self.kind.support()
+            && prior.support != want
+        {
+            return Err(ToolError::failed(format!(
+                "{category} is a {:?} object; place it in the {} stage, not the {} stage",
+                prior.support,
+                stage_for_support(prior.support),
+                self.kind.as_str()
+            )));
+        }
+        // One seed per (scene seed, category, size): identical requests share one asset, so a
+        // set of chairs matches.
+        let key = format!("{}:{category}:{size:?}", self.scene.scene.provenance.seed);
+        let h = blake3::hash(key.as_bytes());
+        let seed = u64::from_le_bytes(h.as_bytes()[..8].try_into().unwrap_or([0; 8]));
+        let mut request = AssetRequest::new(category, seed);
+        request.size = size;
+        self.requests += 1;
+        let id = self
+            .scene
+            .build_asset(&request)
+            .map_err(|e| ToolError::failed(e.to_string()))?;
+        let [lo, hi] = self.scene.scene.assets[&id].bounds;
+        Ok(RoutedAsset {
+            asset: id,
+            category: category.to_string(),
+            size: [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]],
+        })
+    }
+
+    /// The room in focus.
+    pub fn room(&self) -> Result<&crate::scene::Room, ToolError> {
+        self.scene
+            .scene
+            .room(&self.room)
+            .ok_or_else(|| ToolError::failed(format!("room {} does not exist", self.room)))
+    }
+
+    /// Objects of the room in focus (architecture excluded).
+    pub fn room_objects(&self) -> impl Iterator<Item = &SceneObject> {
+        self.scene
+            .scene
+            .objects
+            .iter()
+            .filter(|o| o.room == self.room && o.kind != ObjectKind::Architecture)
     }
 }

@@ -74,7 +74,13 @@ pub fn drawer_and_door_asset() -> Asset {
 /// copy of that cabinet with its door 0.6 rad open, and a welded drawer box with its drawer
 /// 0.1 m out and its right door 0.3 rad open.
 pub fn articulated_state() -> SceneState {
-    let (mut state, _) = build_scene("A bedroom with a cabinet", 3, "export_joints").unwrap();
+    let (mut state, _) = build_scene(
+        "A bedroom with a cabinet",
+        3,
+        "export_joints",
+        &scenesmith::stages::run::Backend::Builtin,
+    )
+    .unwrap();
     let cabinet = state
         .scene
         .objects

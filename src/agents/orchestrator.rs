@@ -1,0 +1,560 @@
+//! The stage loop: an orchestrator drives a designer and a critic through control decisions;
+//! every critique becomes a checkpoint; a regression rolls back; the stage keeps its best
+//! checkpoint.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use serde_json::json;
+
+use super::backend::{
+    AgentCx, AgentError, Critic, DesignRequest, Designer, LogEvent, PlacementStyle, RunLog,
+};
+use super::critique::{CategorySpec, Critique};
+use super::tool::Toolbox;
+
+/// Per-stage loop settings.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StageConfig {
+    /// Most critique rounds before the stage ends.
+    pub max_rounds: usize,
+    /// The stage ends early when every category scores at least this.
+    pub early_finish_min_score: u8,
+    /// Roll back when any category drops by this much or more.
+    pub rollback_category_drop: u8,
+    /// Roll back when the sum of scores drops by this much or more.
+    pub rollback_sum_drop: u32,
+    /// Hard cap on orchestrator decisions (guards a confused orchestrator).
+    pub max_decisions: usize,
+}
+
+impl Default for StageConfig {
+    fn default() -> Self {
+        StageConfig {
+            max_rounds: 3,
+            early_finish_min_score: 8,
+            rollback_category_drop: 2,
+            rollback_sum_drop: 1,
+            max_decisions: 24,
+        }
+    }
+}
+
+/// The orchestrator's control actions (its tools).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(tag = "tool", content = "args", rename_all = "snake_case")]
+pub enum Decision {
+    /// Ask the designer for the first design.
+    RequestInitialDesign {},
+    /// Ask the designer to change the current design.
+    RequestDesignChange {
+        /// What to change, concretely.
+        instruction: String,
+    },
+    /// Ask the critic to score the current design (this records a checkpoint).
+    RequestCritique {},
+    /// Restore an earlier checkpoint.
+    ResetSceneToCheckpoint {
+        /// Why.
+        reason: String,
+        /// Checkpoint index; the previous one when omitted.
+        #[serde(default)]
+        checkpoint: Option<usize>,
+    },
+    /// Choose how precisely the designer aligns objects.
+    SelectPlacementStyle {
+        /// `natural` or `perfect`.
+        style: PlacementStyle,
+    },
+    /// End the stage (the best checkpoint is kept).
+    Finish {
+        /// Why.
+        reason: String,
+    },
+}
+
+/// A saved state with its critique.
+#[derive(Debug, Clone)]
+pub struct Checkpoint<S> {
+    /// The full stage state.
+    pub state: S,
+    /// Its critique.
+    pub critique: Critique,
+    /// The critique of the checkpoint it was derived from.
+    pub previous: Option<Critique>,
+}
+
+/// What the orchestrator sees when deciding.
+#[derive(Debug, Clone, Serialize)]
+pub struct LoopView {
+    /// Stage name.
+    pub stage: String,
+    /// Whether a design exists.
+    pub has_design: bool,
+    /// Whether the design changed since the last critique.
+    pub changed_since_critique: bool,
+    /// Critique rounds so far.
+    pub rounds: usize,
+    /// The latest critique.
+    pub last: Option<Critique>,
+    /// The critique of the checkpoint the current state derives from.
+    pub baseline: Option<Critique>,
+    /// Set right after a rollback: why.
+    pub rolled_back: Option<String>,
+    /// Current placement style.
+    pub style: PlacementStyle,
+    /// Loop settings.
+    pub config: StageConfig,
+    /// Number of checkpoints.
+    pub checkpoints: usize,
+}
+
+/// Decides the next control action.
+pub trait Orchestrator {
+    /// The next decision; an `Err` ends the stage with the best checkpoint so far.
+    fn decide(&mut self, view: &LoopView) -> Result<Decision, AgentError>;
+    /// Told when a decision could not be carried out, so an LLM can correct itself.
+    fn rejected(&mut self, _decision: &Decision, _why: &str) {}
+    /// Forgets everything (between stages).
+    fn reset(&mut self) {}
+}
+
+/// The built-in orchestrator: design, critique, improve the weakest points until the scores
+/// are good enough or the rounds run out.
+#[derive(Debug, Clone, Default)]
+pub struct BuiltinOrchestrator {
+    /// Style to select at the start, if any.
+    pub style: Option<PlacementStyle>,
+    style_sent: bool,
+}
+
+impl BuiltinOrchestrator {
+    /// An orchestrator that selects `style` before the first design.
+    pub fn with_style(style: PlacementStyle) -> Self {
+        BuiltinOrchestrator {
+            style: Some(style),
+            style_sent: false,
+        }
+    }
+}
+
+impl Orchestrator for BuiltinOrchestrator {
+    fn decide(&mut self, v: &LoopView) -> Result<Decision, AgentError> {
+        if let Some(style) = self.style
+            && !self.style_sent
+        {
+            self.style_sent = true;
+            return Ok(Decision::SelectPlacementStyle { style });
+        }
+        if !v.has_design {
+            return Ok(Decision::RequestInitialDesign {});
+        }
+        if v.changed_since_critique {
+            return Ok(Decision::RequestCritique {});
+        }
+        let Some(last) = &v.last else {
+            return Ok(Decision::RequestCritique {});
+        };
+        if last.min_score() >= v.config.early_finish_min_score {
+            return Ok(Decision::Finish {
+                reason: format!(
+                    "every category scores at least {}",
+                    v.config.early_finish_min_score
+                ),
+            });
+        }
+        if v.rounds >= v.config.max_rounds {
+            return Ok(Decision::Finish {
+                reason: format!("{} critique rounds done", v.rounds),
+            });
+        }
+        // Ask for the weakest categories and the concrete issues, worst first.
+        let basis = v.baseline.as_ref().unwrap_or(last);
+        let mut weak: Vec<_> = basis.scores.iter().filter(|s| s.score < 10).collect();
+        weak.sort_by_key(|s| s.score);
+        let mut parts: Vec<String> = weak
+            .iter()
+            .take(3)
+            .map(|s| format!("improve {} ({}/10: {})", s.category, s.score, s.reason))
+            .collect();
+        parts.extend(basis.issues.iter().take(6).map(|i| i.description.clone()));
+        Ok(Decision::RequestDesignChange {
+            instruction: parts.join("; "),
+        })
+    }
+
+    fn reset(&mut self) {
+        self.style_sent = false;
+    }
+}
+
+/// What a stage produced.
+#[derive(Debug, Clone)]
+pub struct StageOutcome<S> {
+    /// The kept state: the best checkpoint, or the current state if nothing was critiqued.
+    pub state: S,
+    /// Its critique.
+    pub critique: Option<Critique>,
+    /// All critiques in order.
+    pub history: Vec<Critique>,
+    /// Index of the kept checkpoint.
+    pub kept: Option<usize>,
+}
+
+/// One stage: its name, categories, tools and the text brief the agents get.
+pub struct StageSpec<'a, S> {
+    /// Name (`layout`, `furniture`, ...).
+    pub name: &'a str,
+    /// Critic categories.
+    pub categories: &'a [CategorySpec],
+    /// Tools.
+    pub toolbox: &'a Toolbox<S>,
+    /// Task description for the agents.
+    pub brief: &'a str,
+}
+
+/// Runs one stage to the end and returns its best checkpoint.
+pub fn run_stage<S: Clone>(
+    spec: &StageSpec<'_, S>,
+    initial: S,
+    designer: &mut dyn Designer<S>,
+    critic: &mut dyn Critic<S>,
+    orchestrator: &mut dyn Orchestrator,
+    config: &StageConfig,
+    log: &mut RunLog,
+) -> Result<StageOutcome<S>, AgentError> {
+    designer.reset();
+    critic.reset();
+    orchestrator.reset();
+    let mut current = initial;
+    let mut checkpoints: Vec<Checkpoint<S>> = Vec::new();
+    let mut baseline: Option<usize> = None;
+    let mut has_design = false;
+    let mut changed = false;
+    let mut rolled_back: Option<String> = None;
+    let mut style = PlacementStyle::default();
+    let mut attempt = 0u32;
+    let stage = spec.name.to_string();
+
+    for _ in 0..config.max_decisions {
+        let view = LoopView {
+            stage: stage.clone(),
+            has_design,
+            changed_since_critique: changed,
+            rounds: checkpoints.len(),
+            last: checkpoints.last().map(|c| c.critique.clone()),
+            baseline: baseline.map(|i| checkpoints[i].critique.clone()),
+            rolled_back: rolled_back.clone(),
+            style,
+            config: config.clone(),
+            checkpoints: checkpoints.len(),
+        };
+        let decision = match orchestrator.decide(&view) {
+            Ok(d) => d,
+            Err(e) if !checkpoints.is_empty() => {
+                tracing::warn!("orchestrator of {stage} failed ({e}); keeping the best checkpoint");
+                break;
+            }
+            Err(e) => return Err(e),
+        };
+        log.events.push(LogEvent::Decision {
+            stage: stage.clone(),
+            decision: serde_json::to_value(&decision).unwrap_or(json!(null)),
+        });
+        let mut cx = AgentCx {
+            stage: spec.name,
+            toolbox: spec.toolbox,
+            categories: spec.categories,
+            brief: spec.brief,
+            style,
+            attempt,
+            log,
+        };
+        match decision {
+            Decision::RequestInitialDesign {} if has_design => {
+                orchestrator.rejected(
+                    &decision,
+                    "a design exists; request a design change instead",
+                );
+            }
+            Decision::RequestInitialDesign {} => {
+                designer.design(&mut current, &DesignRequest::Initial, &mut cx)?;
+                has_design = true;
+                changed = true;
+                attempt += 1;
+            }
+            Decision::RequestDesignChange { .. } if !has_design => {
+                orchestrator.rejected(
+                    &decision,
+                    "there is no design yet; request the initial design",
+                );
+            }
+            Decision::RequestDesignChange { instruction } => {
+                let request = match rolled_back.take() {
+                    Some(reason) => DesignRequest::AfterRollback {
+                        reason,
+                        instruction,
+                    },
+                    None => DesignRequest::Change { instruction },
+                };
+                designer.design(&mut current, &request, &mut cx)?;
+                changed = true;
+                attempt += 1;
+            }
+            Decision::RequestCritique {} if !has_design => {
+                orchestrator.rejected(&decision, "there is no design to critique yet");
+            }
+            Decision::RequestCritique {} => {
+                let critique = critic.critique(&mut current, &mut cx)?;
+                let previous = baseline.map(|i| checkpoints[i].critique.clone());
+                let index = checkpoints.len();
+                log.events.push(LogEvent::Checkpoint {
+                    stage: stage.clone(),
+                    index,
+                    total: critique.total(),
+                    critique: critique.clone(),
+                });
+                checkpoints.push(Checkpoint {
+                    state: current.clone(),
+                    critique: critique.clone(),
+                    previous: previous.clone(),
+                });
+                changed = false;
+                let regression = previous.as_ref().and_then(|p| {
+                    critique.regression_from(
+                        p,
+                        config.rollback_category_drop,
+                        config.rollback_sum_drop,
+                    )
+                });
+                match (regression, baseline) {
+                    (Some(reason), Some(back)) => {
+                        current = checkpoints[back].state.clone();
+                        log.events.push(LogEvent::Rollback {
+                            stage: stage.clone(),
+                            to: back,
+                            reason: reason.clone(),
+                        });
+                        rolled_back = Some(reason);
+                    }
+                    _ => baseline = Some(index),
+                }
+            }
+            Decision::ResetSceneToCheckpoint { reason, checkpoint } => {
+                let target = checkpoint.or(baseline).filter(|i| *i < checkpoints.len());
+                match target {
+                    Some(i) => {
+                        current = checkpoints[i].state.clone();
+                        baseline = Some(i);
+                        changed = false;
+                        log.events.push(LogEvent::Rollback {
+                            stage: stage.clone(),
+                            to: i,
+                            reason: reason.clone(),
+                        });
+                        rolled_back = Some(reason);
+                    }
+                    None => orchestrator.rejected(
+                        &Decision::ResetSceneToCheckpoint { reason, checkpoint },
+                        &format!("no such checkpoint; there are {}", checkpoints.len()),
+                    ),
+                }
+            }
+            Decision::SelectPlacementStyle { style: s } => style = s,
+            Decision::Finish { .. } => break,
+        }
+    }
+
+    // The kept result: the best critiqued checkpoint (latest on ties); a state that was never
+    // critiqued only when there is no checkpoint at all.
+    let kept = checkpoints
+        .iter()
+        .enumerate()
+        .max_by_key(|(i, c)| (c.critique.total(), *i))
+        .map(|(i, _)| i);
+    log.events.push(LogEvent::StageEnd {
+        stage: stage.clone(),
+        kept,
+        total: kept.map(|i| checkpoints[i].critique.total()),
+        rounds: checkpoints.len(),
+    });
+    let history = checkpoints.iter().map(|c| c.critique.clone()).collect();
+    Ok(match kept {
+        Some(i) => {
+            let c = checkpoints.swap_remove(i);
+            StageOutcome {
+                state: c.state,
+                critique: Some(c.critique),
+                history,
+                kept,
+            }
+        }
+        None => StageOutcome {
+            state: current,
+            critique: None,
+            history,
+            kept: None,
+        },
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::agents::critique::Score;
+    use crate::agents::tool::{Access, Role, ToolError};
+    use schemars::JsonSchema;
+    use serde::Deserialize;
+
+    /// A toy stage: a number the designer moves, the critic likes 7.
+    #[derive(Deserialize, JsonSchema)]
+    struct SetArgs {
+        value: i32,
+    }
+    #[derive(Deserialize, JsonSchema)]
+    struct NoArgs {}
+    #[derive(Serialize, JsonSchema)]
+    struct Val {
+        value: i32,
+    }
+
+    fn toolbox() -> Toolbox<i32> {
+        let mut t = Toolbox::new();
+        t.add(
+            "set",
+            "Set the value.",
+            Access::Modify,
+            |s: &mut i32, a: SetArgs| {
+                *s = a.value;
+                Ok(Val { value: *s })
+            },
+        );
+        t.add(
+            "get",
+            "Read the value.",
+            Access::Observe,
+            |s: &mut i32, _: NoArgs| Ok::<_, ToolError>(Val { value: *s }),
+        );
+        t
+    }
+
+    /// Designs the values of a script, one per turn.
+    struct Scripted(Vec<i32>, Vec<DesignRequest>);
+    impl Designer<i32> for Scripted {
+        fn design(
+            &mut self,
+            s: &mut i32,
+            r: &DesignRequest,
+            cx: &mut AgentCx<'_, i32>,
+        ) -> Result<String, AgentError> {
+            self.1.push(r.clone());
+            let v = if self.0.is_empty() {
+                *s
+            } else {
+                self.0.remove(0)
+            };
+            let _ = cx.call(s, Role::Designer, "set", json!({"value": v}));
+            Ok(format!("set {v}"))
+        }
+    }
+    struct Likes7;
+    impl Critic<i32> for Likes7 {
+        fn critique(
+            &mut self,
+            s: &mut i32,
+            cx: &mut AgentCx<'_, i32>,
+        ) -> Result<Critique, AgentError> {
+            let v = cx.call(s, Role::Critic, "get", json!({})).unwrap()["value"]
+                .as_i64()
+                .unwrap() as i32;
+            let score = (10 - (v - 7).abs()).clamp(0, 10) as u8;
+            Ok(Critique {
+                scores: vec![Score {
+                    category: "closeness".into(),
+                    score,
+                    reason: format!("value {v}"),
+                }],
+                issues: vec![],
+            })
+        }
+    }
+
+    #[test]
+    fn regression_rolls_back_and_best_checkpoint_is_kept() {
+        let cats = [CategorySpec::new("closeness", "close to 7")];
+        let tb = toolbox();
+        let spec = StageSpec {
+            name: "toy",
+            categories: &cats,
+            toolbox: &tb,
+            brief: "",
+        };
+        // 3 (score 6) -> 5 (score 8: early finish at 9 not reached) -> 1 (score 4: rollback to 5)
+        // -> 6 (score 9, finish).
+        let mut designer = Scripted(vec![3, 5, 1, 6], vec![]);
+        let config = StageConfig {
+            max_rounds: 6,
+            early_finish_min_score: 9,
+            ..StageConfig::default()
+        };
+        let mut log = RunLog::default();
+        let out = run_stage(
+            &spec,
+            0,
+            &mut designer,
+            &mut Likes7,
+            &mut BuiltinOrchestrator::default(),
+            &config,
+            &mut log,
+        )
+        .unwrap();
+        assert_eq!(out.state, 6);
+        assert_eq!(out.critique.unwrap().total(), 9);
+        let rollbacks: Vec<_> = log
+            .events
+            .iter()
+            .filter(|e| matches!(e, LogEvent::Rollback { .. }))
+            .collect();
+        assert_eq!(rollbacks.len(), 1);
+        // The designer was told about the rollback on its next turn.
+        assert!(
+            designer
+                .1
+                .iter()
+                .any(|r| matches!(r, DesignRequest::AfterRollback { .. }))
+        );
+        // Every designer call went through the toolbox and is in the log.
+        assert_eq!(log.calls("toy", Role::Designer).count(), 4);
+    }
+
+    #[test]
+    fn never_keeps_a_degraded_state() {
+        let cats = [CategorySpec::new("closeness", "close to 7")];
+        let tb = toolbox();
+        let spec = StageSpec {
+            name: "toy",
+            categories: &cats,
+            toolbox: &tb,
+            brief: "",
+        };
+        // 7 is perfect but the loop goes on (early finish disabled) and only gets worse.
+        let mut designer = Scripted(vec![7, 8, 9, 10], vec![]);
+        let config = StageConfig {
+            max_rounds: 4,
+            early_finish_min_score: 11,
+            ..StageConfig::default()
+        };
+        let mut log = RunLog::default();
+        let out = run_stage(
+            &spec,
+            0,
+            &mut designer,
+            &mut Likes7,
+            &mut BuiltinOrchestrator::default(),
+            &config,
+            &mut log,
+        )
+        .unwrap();
+        assert_eq!(out.state, 7);
+        assert_eq!(out.kept, Some(0));
+    }
+}

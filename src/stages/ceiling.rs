@@ -1,0 +1,338 @@
+//! Ceiling stage: objects hanging from the ceiling of one room (lights, fans, mobiles), placed
+//! at room coordinates or above a piece of furniture, with head room kept over the walkable
+//! floor. Includes the built-in designer and critic.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+use serde_json::json;
+
+use super::common::{self, ObjectInfo, floor_footprints, object_info};
+use super::placement::Footprint;
+use super::plan::Arrangement;
+use super::room::RoomFrame;
+use super::{RoutedAsset, StageState};
+use crate::agents::{
+    Access, AgentCx, AgentError, CategorySpec, Critic, Critique, DesignRequest, Designer, Issue,
+    Role, Score, ToolError, Toolbox,
+};
+use crate::scene::{ObjectKind, Pose, Support};
+
+/// Clear height kept under ceiling objects over walkable floor, metres.
+pub const HEAD_ROOM: f64 = 2.0;
+
+/// The ceiling stage's critic categories.
+pub fn categories() -> Vec<CategorySpec> {
+    vec![
+        CategorySpec::new(
+            "prompt_following",
+            "every requested ceiling object is present with its count",
+        ),
+        CategorySpec::new(
+            "placement_logic",
+            "lights over what they light (tables, beds, seating), head room kept where people walk",
+        ),
+        CategorySpec::new(
+            "coverage",
+            "the room is evenly covered; nothing bunched in one corner",
+        ),
+        CategorySpec::new(
+            "physical_feasibility",
+            "no ceiling object penetrates furniture, walls or another object",
+        ),
+    ]
+}
+
+/// Hang an object at room coordinates.
+#[derive(Debug, Deserialize, JsonSchema)]
+pub struct HangArgs {
+    /// What to hang, e.g. "pendant light", "ceiling fan".
+    pub description: String,
+    /// Room x, metres.
+    pub x: f64,
+    /// Room y, metres.
+    pub y: f64,
+}
+
+/// Hang an object above a piece of furniture.
+#[derive(Debug, Deserialize, JsonSchema)]
+pub struct HangAboveArgs {
+    /// What to hang.
+    pub description: String,
+    /// Id of the furniture (table, bed, desk...).
+    pub target: String,
+}
+
+/// Result of a hanging tool.
+#[derive(Debug, Serialize, JsonSchema)]
+pub struct HangResult {
+    /// The new object.
+    pub placed: Option<ObjectInfo>,
+}
+
+fn try_hang(
+    state: &mut StageState,
+    routed: &RoutedAsset,
+    world_xy: [f64; 2],
+    over: Option<&str>,
+) -> Result<String, ToolError> {
+    let room = state.room()?.clone();
+    let rec = state.scene.scene.assets[&routed.asset].clone();
+    let [lo, hi] = rec.bounds;
+    let h = hi[2] - lo[2];
+    // Ceiling objects have their top at z = 0 in their own frame.
+    let pose = Pose::from_xyz(
+        world_xy[0] - (lo[0] + hi[0]) / 2.0,
+        world_xy[1] - (lo[1] + hi[1]) / 2.0,
+        room.wall_height - hi[2],
+    );
+    let fp = Footprint::of(&rec, &pose);
+    if !fp.inside(&room.floor_polygon) {
+        return Err(ToolError::failed(format!(
+            "a {} there would stick out of the room",
+            routed.category
+        )));
+    }
+    let bottom = room.wall_height - h;
+    for (id, f) in floor_footprints(state) {
+        if f.overlaps(&fp, 0.0) && f.z[1] + 0.1 > bottom {
+            return Err(ToolError::failed(format!(
+                "a {} there would hit {id}",
+                routed.category
+            )));
+        }
+    }
+    let over_furniture = over.is_some();
+    if bottom < HEAD_ROOM && !over_furniture {
+        return Err(ToolError::failed(format!(
+            "a {} hanging to {:.2} m leaves less than {HEAD_ROOM} m of head room; hang it above furniture instead",
+            routed.category, bottom
+        )));
+    }
+    for o in state
+        .room_objects()
+        .filter(|o| o.kind == ObjectKind::Ceiling)
+    {
+        if let Some(r) = state.scene.scene.assets.get(&o.asset)
+            && Footprint::of(r, &o.world_from_object).overlaps(&fp, 0.1)
+        {
+            return Err(ToolError::failed(format!("too close to {}", o.id)));
+        }
+    }
+    let room_id = state.room.clone();
+    Ok(state.scene.add_object(
+        &routed.category,
+        ObjectKind::Ceiling,
+        &room_id,
+        &routed.asset,
+        pose,
+        Support::Ceiling {
+            room: room_id.clone(),
+        },
+    ))
+}
+
+fn hang(state: &mut StageState, a: HangArgs) -> Result<HangResult, ToolError> {
+    let routed = state.route_asset(&a.description, None)?;
+    let room = state.room()?.clone();
+    let frame = RoomFrame::new(&room);
+    let id = try_hang(state, &routed, frame.to_world(a.x, a.y), None)?;
+    Ok(HangResult {
+        placed: object_info(state, &frame, &id),
+    })
+}
+
+fn hang_above(state: &mut StageState, a: HangAboveArgs) -> Result<HangResult, ToolError> {
+    let target = state
+        .scene
+        .scene
+        .object(&a.target)
+        .cloned()
+        .ok_or_else(|| ToolError::failed(format!("no object {:?}", a.target)))?;
+    let routed = state.route_asset(&a.description, None)?;
+    let room = state.room()?.clone();
+    let frame = RoomFrame::new(&room);
+    let trec = state.scene.scene.assets[&target.asset].clone();
+    let tfp = Footprint::of(&trec, &target.world_from_object);
+    let id = try_hang(state, &routed, tfp.center, Some(&a.target))?;
+    Ok(HangResult {
+        placed: object_info(state, &frame, &id),
+    })
+}
+
+/// The ceiling stage's tools.
+pub fn toolbox() -> Toolbox<StageState> {
+    let mut t = Toolbox::new();
+    common::register(&mut t);
+    t.add("hang_from_ceiling", "Hang an object from the ceiling at room coordinates; refuses spots without head room or above tall furniture.", Access::Modify, hang);
+    t.add("hang_above", "Hang an object from the ceiling centred above a piece of furniture (a pendant light above a table).", Access::Modify, hang_above);
+    t
+}
+
+/// The built-in ceiling designer.
+#[derive(Debug, Default)]
+pub struct BuiltinCeilingDesigner;
+
+impl Designer<StageState> for BuiltinCeilingDesigner {
+    fn design(
+        &mut self,
+        state: &mut StageState,
+        _request: &DesignRequest,
+        cx: &mut AgentCx<'_, StageState>,
+    ) -> Result<String, AgentError> {
+        let _ = cx.call(state, Role::Designer, "observe_room", json!({}));
+        let room = state
+            .room()
+            .map_err(|e| AgentError::Unusable {
+                role: "designer",
+                stage: "ceiling".into(),
+                message: e.message,
+            })?
+            .clone();
+        let frame = RoomFrame::new(&room);
+        for want in state.plan.ceiling.clone() {
+            let mut need = want
+                .count
+                .saturating_sub(common::present_count(state, &want.noun));
+            if let Arrangement::Above { target } = &want.arrangement {
+                let cat = StageState::category_of(target)
+                    .unwrap_or(target)
+                    .to_string();
+                let ids: Vec<String> = state
+                    .room_objects()
+                    .filter(|o| o.category == cat)
+                    .map(|o| o.id.clone())
+                    .collect();
+                for t in ids {
+                    if need == 0 {
+                        break;
+                    }
+                    if cx
+                        .call(
+                            state,
+                            Role::Designer,
+                            "hang_above",
+                            json!({"description": want.description, "target": t}),
+                        )
+                        .is_ok()
+                    {
+                        need -= 1;
+                    }
+                }
+            }
+            // Spread the rest on a grid over the room.
+            let n = need as usize;
+            if n == 0 {
+                continue;
+            }
+            let cols = (n as f64 * frame.size[0] / frame.size[1].max(0.1))
+                .sqrt()
+                .ceil()
+                .max(1.0) as usize;
+            let rows = n.div_ceil(cols);
+            let mut placed = 0;
+            'grid: for r in 0..rows {
+                for c in 0..cols {
+                    if placed >= n {
+                        break 'grid;
+                    }
+                    let x = frame.size[0] * (c as f64 + 0.5) / cols as f64;
+                    let y = frame.size[1] * (r as f64 + 0.5) / rows as f64;
+                    if cx
+                        .call(
+                            state,
+                            Role::Designer,
+                            "hang_from_ceiling",
+                            json!({"description": want.description, "x": x, "y": y}),
+                        )
+                        .is_ok()
+                    {
+                        placed += 1;
+                    }
+                }
+            }
+        }
+        let n = state
+            .room_objects()
+            .filter(|o| o.kind == ObjectKind::Ceiling)
+            .count();
+        Ok(format!("{n} ceiling objects"))
+    }
+}
+
+/// The built-in ceiling critic.
+#[derive(Debug, Default)]
+pub struct BuiltinCeilingCritic;
+
+impl Critic<StageState> for BuiltinCeilingCritic {
+    fn critique(
+        &mut self,
+        state: &mut StageState,
+        cx: &mut AgentCx<'_, StageState>,
+    ) -> Result<Critique, AgentError> {
+        let _ = cx.call(state, Role::Critic, "observe_room", json!({}));
+        let mut issues = Vec::new();
+        let wants = state.plan.ceiling.clone();
+        let (pf, phys) = super::wall::requested_and_collisions(
+            state,
+            cx,
+            &wants,
+            ObjectKind::Ceiling,
+            &mut issues,
+        );
+        let room = state
+            .room()
+            .map_err(|e| AgentError::Unusable {
+                role: "critic",
+                stage: "ceiling".into(),
+                message: e.message,
+            })?
+            .clone();
+        let frame = RoomFrame::new(&room);
+        let hung: Vec<[f64; 2]> = state
+            .room_objects()
+            .filter(|o| o.kind == ObjectKind::Ceiling)
+            .map(|o| {
+                let t = o.world_from_object.translation();
+                frame.to_room([t.x, t.y])
+            })
+            .collect();
+        // Coverage: the centroid of the lights near the room centre.
+        let coverage = if hung.is_empty() {
+            10.0
+        } else {
+            let cx_ = hung.iter().map(|p| p[0]).sum::<f64>() / hung.len() as f64;
+            let cy_ = hung.iter().map(|p| p[1]).sum::<f64>() / hung.len() as f64;
+            let off = ((cx_ - frame.size[0] / 2.0) / frame.size[0])
+                .hypot((cy_ - frame.size[1] / 2.0) / frame.size[1]);
+            if off > 0.25 {
+                issues.push(Issue {
+                    objects: vec![],
+                    description: "ceiling objects bunch on one side; spread them".into(),
+                });
+            }
+            10.0 - 20.0 * (off - 0.15).max(0.0)
+        };
+        let s = |c: &str, v: f64, r: String| Score {
+            category: c.into(),
+            score: v.round().clamp(0.0, 10.0) as u8,
+            reason: r,
+        };
+        Ok(Critique {
+            scores: vec![
+                pf,
+                s(
+                    "placement_logic",
+                    10.0,
+                    "head room and furniture clearance enforced at placement".into(),
+                ),
+                s(
+                    "coverage",
+                    coverage,
+                    format!("{} ceiling objects", hung.len()),
+                ),
+                phys,
+            ],
+            issues,
+        })
+    }
+}

@@ -1,0 +1,875 @@
+//! Manipuland stage: small objects on the surfaces of one supporting entity (a table top, the
+//! levels of a shelf, a counter, a bed). Positions are surface-local: `u` along the surface's
+//! width, `v` along its depth (towards the front), from its centre; the stage checks that
+//! objects lie within the surface, clear of each other and below the free height above it.
+//!
+//! Composite tools build stacks (items resting on each other at the pitch where they nest),
+//! fills (items inside a container's cavity surface), piles (layers of loosely packed items)
+//! and place settings (plate, glass and cutlery in front of each seat).
+
+use nalgebra::{UnitQuaternion, Vector3};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use super::common::{self, ObjectInfo, object_info};
+use super::room::RoomFrame;
+use super::{RoutedAsset, StageState};
+use crate::agents::{Access, CategorySpec, ToolError, Toolbox};
+use crate::assets::Asset;
+use crate::physics::collision::{object_penetration, posed_object};
+use crate::scene::{AssetRecord, ObjectKind, Pose, SceneObject, Support, SurfaceRecord};
+
+/// Gap kept between neighbouring small objects, metres.
+const GAP: f64 = 0.008;
+/// Release height above a surface, metres (settling closes it).
+const LIFT: f64 = 0.001;
+
+/// The manipuland stage's critic categories.
+pub fn categories() -> Vec<CategorySpec> {
+    vec![
+        CategorySpec::new(
+            "prompt_following",
+            "every requested small object is present on this entity with the requested count",
+        ),
+        CategorySpec::new(
+            "realism",
+            "objects are plausible where they are: upright, related items together, nothing absurd",
+        ),
+        CategorySpec::new(
+            "arrangement",
+            "objects sit inside the surface, evenly spaced, nothing hanging over an edge",
+        ),
+        CategorySpec::new(
+            "physical_feasibility",
+            "no object penetrates another object or its support",
+        ),
+    ]
+}
+
+/// A surface of an object in the room.
+#[derive(Debug, Clone)]
+pub struct SurfaceRef {
+    /// Supporting object.
+    pub parent: SceneObject,
+    /// The surface (asset model frame).
+    pub surface: SurfaceRecord,
+}
+
+impl SurfaceRef {
+    /// `parent_id/surface_id`.
+    pub fn key(&self) -> String {
+        format!("{}/{}", self.parent.id, self.surface.id)
+    }
+
+    /// World pose of the surface frame (origin at its centre, on the surface).
+    pub fn world_from_surface(&self) -> Pose {
+        let c = self.surface.center;
+        self.parent
+            .world_from_object
+            .compose(&Pose::from_xyz(c[0], c[1], c[2]))
+    }
+}
+
+/// Finds `parent/surface` in the room.
+pub fn find_surface(state: &StageState, key: &str) -> Result<SurfaceRef, ToolError> {
+    let (pid, sid) = key.split_once('/').unwrap_or((key, "top"));
+    let parent = state.scene.scene.object(pid).cloned().ok_or_else(|| {
+        ToolError::failed(format!(
+            "no object {pid:?}; call observe_surfaces for surface ids"
+        ))
+    })?;
+    let rec = state
+        .scene
+        .scene
+        .assets
+        .get(&parent.asset)
+        .ok_or_else(|| ToolError::failed("asset missing"))?;
+    let surface = rec
+        .surfaces
+        .iter()
+        .find(|s| s.id == sid)
+        .cloned()
+        .ok_or_else(|| {
+            ToolError::failed(format!(
+                "{pid} has no surface {sid:?}; its surfaces: {}",
+                rec.surfaces
+                    .iter()
+                    .map(|s| s.id.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ))
+        })?;
+    Ok(SurfaceRef { parent, surface })
+}
+
+/// Axis-aligned extent of an asset under a local rotation: (lo, hi) in the rotated frame.
+fn rotated_bounds(rec: &AssetRecord, rot: &UnitQuaternion<f64>) -> ([f64; 3], [f64; 3]) {
+    let [lo, hi] = rec.bounds;
+    let mut out_lo = [f64::INFINITY; 3];
+    let mut out_hi = [f64::NEG_INFINITY; 3];
+    for x in [lo[0], hi[0]] {
+        for y in [lo[1], hi[1]] {
+            for z in [lo[2], hi[2]] {
+                let p = rot * Vector3::new(x, y, z);
+                for k in 0..3 {
+                    out_lo[k] = out_lo[k].min(p[k]);
+                    out_hi[k] = out_hi[k].max(p[k]);
+                }
+            }
+        }
+    }
+    (out_lo, out_hi)
+}
+
+/// An item's footprint on a surface: rectangle (surface frame) and height range above it.
+#[derive(Debug, Clone, Copy)]
+struct Slot {
+    u: f64,
+    v: f64,
+    hu: f64,
+    hv: f64,
+}
+
+impl Slot {
+    fn overlaps(&self, o: &Slot) -> bool {
+        (self.u - o.u).abs() < self.hu + o.hu + GAP && (self.v - o.v).abs() < self.hv + o.hv + GAP
+    }
+}
+
+/// Footprints of the objects already resting (directly) on a surface.
+fn occupied(state: &StageState, s: &SurfaceRef) -> Vec<Slot> {
+    let surface_from_world = s.world_from_surface().inverse();
+    state
+        .scene
+        .scene
+        .objects
+        .iter()
+        .filter(|o| matches!(&o.support, Support::Object { parent, surface } if *parent == s.parent.id && *surface == s.surface.id))
+        .filter_map(|o| {
+            let rec = state.scene.scene.assets.get(&o.asset)?;
+            let local = surface_from_world.compose(&o.world_from_object);
+            let (lo, hi) = rotated_bounds(rec, &local.rotation());
+            let t = local.translation();
+            Some(Slot {
+                u: t.x + (lo[0] + hi[0]) / 2.0,
+                v: t.y + (lo[1] + hi[1]) / 2.0,
+                hu: (hi[0] - lo[0]) / 2.0,
+                hv: (hi[1] - lo[1]) / 2.0,
+            })
+        })
+        .collect()
+}
+
+/// Local rotation of an item on a surface: yaw, optionally laid on its side first.
+fn item_rotation(yaw_deg: f64, lay_flat: bool) -> UnitQuaternion<f64> {
+    let yaw = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw_deg.to_radians());
+    if lay_flat {
+        yaw * UnitQuaternion::from_axis_angle(&Vector3::y_axis(), std::f64::consts::FRAC_PI_2)
+    } else {
+        yaw
+    }
+}
+
+/// Where an item goes on a surface; `None` when it does not fit.
+#[allow(clippy::too_many_arguments)]
+fn fit(
+    state: &StageState,
+    s: &SurfaceRef,
+    rec: &AssetRecord,
+    rot: &UnitQuaternion<f64>,
+    at: Option<(f64, f64)>,
+    extra: &[Slot],
+) -> Result<(Pose, Slot), String> {
+    let (lo, hi) = rotated_bounds(rec, rot);
+    let (hu, hv, h) = ((hi[0] - lo[0]) / 2.0, (hi[1] - lo[1]) / 2.0, hi[2] - lo[2]);
+    if h > s.surface.clearance - 0.003 {
+        return Err(format!(
+            "it is {:.2} m tall but {} has {:.2} m of free height",
+            h,
+            s.key(),
+            s.surface.clearance
+        ));
+    }
+    let (su, sv) = (s.surface.size[0] / 2.0, s.surface.size[1] / 2.0);
+    if hu > su || hv > sv {
+        return Err(format!(
+            "it ({:.2} x {:.2} m) is larger than {} ({:.2} x {:.2} m)",
+            2.0 * hu,
+            2.0 * hv,
+            s.key(),
+            2.0 * su,
+            2.0 * sv
+        ));
+    }
+    let mut taken = occupied(state, s);
+    taken.extend_from_slice(extra);
+    let make = |u: f64, v: f64| Slot { u, v, hu, hv };
+    let free = |slot: &Slot| {
+        slot.u.abs() + slot.hu <= su + 1e-9
+            && slot.v.abs() + slot.hv <= sv + 1e-9
+            && !taken.iter().any(|o| o.overlaps(slot))
+    };
+    let slot = match at {
+        Some((u, v)) => {
+            let slot = make(u, v);
+            if !free(&slot) {
+                return Err(format!(
+                    "({u:.2}, {v:.2}) on {} is taken or off the edge",
+                    s.key()
+                ));
+            }
+            slot
+        }
+        None => {
+            // Raster from the back-left corner, rows along u.
+            let step = 0.01;
+            let mut found = None;
+            let mut v = sv - hv;
+            'scan: while v >= -sv + hv - 1e-9 {
+                let mut u = -su + hu;
+                while u <= su - hu + 1e-9 {
+                    let slot = make(u, v);
+                    if free(&slot) {
+                        found = Some(slot);
+                        break 'scan;
+                    }
+                    u += step;
+                }
+                v -= step;
+            }
+            found.ok_or_else(|| format!("no free spot left on {}", s.key()))?
+        }
+    };
+    // Model origin so that the rotated bounds' centre sits at (u, v) and the bottom on the surface.
+    let local = Pose(nalgebra::Isometry3::from_parts(
+        nalgebra::Translation3::new(
+            slot.u - (lo[0] + hi[0]) / 2.0,
+            slot.v - (lo[1] + hi[1]) / 2.0,
+            -lo[2] + LIFT,
+        ),
+        *rot,
+    ));
+    Ok((s.world_from_surface().compose(&local), slot))
+}
+
+/// Adds a manipuland resting on `support`.
+fn add_item(
+    state: &mut StageState,
+    routed: &RoutedAsset,
+    pose: Pose,
+    parent: &str,
+    surface: &str,
+) -> String {
+    let room = state.room.clone();
+    state.scene.add_object(
+        &routed.category,
+        ObjectKind::Manipuland,
+        &room,
+        &routed.asset,
+        pose,
+        Support::Object {
+            parent: parent.to_string(),
+            surface: surface.to_string(),
+        },
+    )
+}
+
+/// Smallest vertical offset at which a second copy of `asset` rests on the first without
+/// penetrating it (how far plates or bowls nest), found by bisection on parry3d contacts.
+pub fn stack_pitch(asset: &Asset) -> f64 {
+    let [lo, hi] = asset.bounds();
+    let height = hi[2] - lo[2];
+    let none = std::collections::BTreeMap::new();
+    let base = posed_object("a", asset, &Pose::IDENTITY, &none);
+    let overlaps = |dz: f64| {
+        let up = posed_object("b", asset, &Pose::from_xyz(0.0, 0.0, dz), &none);
+        object_penetration(&base, &up) > 1e-4
+    };
+    let (mut low, mut high) = (0.0, height);
+    for _ in 0..24 {
+        let mid = (low + high) / 2.0;
+        if overlaps(mid) {
+            low = mid;
+        } else {
+            high = mid;
+        }
+    }
+    high + 0.0005
+}
+
+/// Place one object.
+#[derive(Debug, Deserialize, JsonSchema)]
+pub struct PlaceArgs {
+    /// What to place, e.g. "red mug", "hardcover book".
+    pub description: String,
+    /// Surface id as `object_id/surface_id` (e.g. `table_0/top`, `shelf_1/shelf_0`).
+    pub surface: String,
+    /// Position along the surface's width from its centre, metres; automatic when omitted.
+    #[serde(default)]
+    pub u: Option<f64>,
+    /// Position along the surface's depth (+ towards its front), metres; automatic when omitted.
+    #[serde(default)]
+    pub v: Option<f64>,
+    /// Rotation relative to the supporting object, degrees.
+    #[serde(default)]
+    pub yaw_deg: f64,
+    /// Lay the object on its side (books lying flat).
+    #[serde(default)]
+    pub lay_flat: bool,
+}
+
+/// A composite of identical objects.
+#[derive(Debug, Deserialize, JsonSchema)]
+pub struct GroupArgs {
+    /// What to place.
+    pub description: String,
+    /// How many.
+    pub count: u32,
+    /// Surface id (`object_id/surface_id`).
+    pub surface: String,
+    /// Position along the width, metres; automatic when omitted.
+    #[serde(default)]
+    pub u: Option<f64>,
+    /// Position along the depth, metres; automatic when omitted.
+    #[serde(default)]
+    pub v: Option<f64>,
+}
+
+/// Place settings at a table.
+#[derive(Debug, Deserialize, JsonSchema)]
+pub struct SettingsArgs {
+    /// Table top surface (`object_id/surface_id`).
+    pub surface: String,
+    /// Items of one setting, e.g. ["plate", "glass", "fork", "knife"].
+    pub items: Vec<String>,
+    /// Number of settings; one per seat facing the table when omitted.
+    #[serde(default)]
+    pub settings: Option<u32>,
+}
+
+/// What a placement tool did.
+#[derive(Debug, Serialize, JsonSchema, Default)]
+pub struct PlaceResult {
+    /// New objects.
+    pub placed: Vec<ObjectInfo>,
+    /// Remarks.
+    pub notes: Vec<String>,
+}
+
+fn result_for(
+    state: &StageState,
+    ids: &[String],
+    notes: Vec<String>,
+) -> Result<PlaceResult, ToolError> {
+    let room = state.room()?.clone();
+    let frame = RoomFrame::new(&room);
+    Ok(PlaceResult {
+        placed: ids
+            .iter()
+            .filter_map(|id| object_info(state, &frame, id))
+            .collect(),
+        notes,
+    })
+}
+
+fn place_on_surface(state: &mut StageState, a: PlaceArgs) -> Result<PlaceResult, ToolError> {
+    let s = find_surface(state, &a.surface)?;
+    let routed = state.route_asset(&a.description, None)?;
+    let rec = state.scene.scene.assets[&routed.asset].clone();
+    let at = match (a.u, a.v) {
+        (Some(u), Some(v)) => Some((u, v)),
+        (None, None) => None,
+        _ => return Err(ToolError::bad_args("give both u and v, or neither")),
+    };
+    let (pose, _) = fit(
+        state,
+        &s,
+        &rec,
+        &item_rotation(a.yaw_deg, a.lay_flat),
+        at,
+        &[],
+    )
+    .map_err(ToolError::failed)?;
+    let id = add_item(state, &routed, pose, &s.parent.id, &s.surface.id);
+    result_for(state, &[id], vec![])
+}
+
+fn place_stack(state: &mut StageState, a: GroupArgs) -> Result<PlaceResult, ToolError> {
+    if a.count == 0 || a.count > 40 {
+        return Err(ToolError::bad_args("count must be between 1 and 40"));
+    }
+    let s = find_surface(state, &a.surface)?;
+    let routed = state.route_asset(&a.description, None)?;
+    let rec = state.scene.scene.assets[&routed.asset].clone();
+    let asset = state.scene.assets[&routed.asset].clone();
+    let pitch = stack_pitch(&asset);
+    let at = a.u.zip(a.v);
+    let (base, _) =
+        fit(state, &s, &rec, &item_rotation(0.0, false), at, &[]).map_err(ToolError::failed)?;
+    let height = rec.bounds[1][2] - rec.bounds[0][2];
+    let max = (((s.surface.clearance - height) / pitch).floor() as u32 + 1).max(1);
+    let n = a.count.min(max);
+    let mut ids = vec![add_item(state, &routed, base, &s.parent.id, &s.surface.id)];
+    for k in 1..n {
+        let pose = Pose::from_xyz(0.0, 0.0, pitch * k as f64 + LIFT).compose(&base);
+        let below = ids[ids.len() - 1].clone();
+        ids.push(add_item(state, &routed, pose, &below, "stack"));
+    }
+    let notes = if n < a.count {
+        vec![format!(
+            "only {n} fit under the free height of {}; start another stack",
+            s.key()
+        )]
+    } else {
+        vec![]
+    };
+    result_for(state, &ids, notes)
+}
+
+/// Places `count` copies in layers over a surface (piles and fills).
+fn place_layers(
+    state: &mut StageState,
+    s: &SurfaceRef,
+    routed: &RoutedAsset,
+    count: u32,
+) -> Result<Vec<String>, ToolError> {
+    let rec = state.scene.scene.assets[&routed.asset].clone();
+    let mut ids = Vec::new();
+    let mut layer_z = 0.0;
+    let height = rec.bounds[1][2] - rec.bounds[0][2];
+    while (ids.len() as u32) < count {
+        let mut extra: Vec<Slot> = Vec::new();
+        let mut placed_in_layer = 0;
+        while (ids.len() as u32) < count {
+            let yaw = 37.0 * ids.len() as f64;
+            let rot = item_rotation(yaw, false);
+            let layer = SurfaceRef {
+                parent: s.parent.clone(),
+                surface: SurfaceRecord {
+                    clearance: s.surface.clearance - layer_z,
+                    ..s.surface.clone()
+                },
+            };
+            // Upper layers ignore the lower layer's footprints (they rest on it).
+            let lower_free = if layer_z > 0.0 { &extra[..] } else { &[] };
+            let attempt = if layer_z > 0.0 {
+                fit_ignoring_surface(state, &layer, &rec, &rot, lower_free)
+            } else {
+                fit(state, &layer, &rec, &rot, None, &extra).ok()
+            };
+            let Some((pose, slot)) = attempt else { break };
+            let pose = Pose::from_xyz(0.0, 0.0, layer_z).compose(&pose);
+            ids.push(add_item(state, routed, pose, &s.parent.id, &s.surface.id));
+            extra.push(slot);
+            placed_in_layer += 1;
+        }
+        if placed_in_layer == 0 {
+            break;
+        }
+        layer_z += height + 0.002;
+        if layer_z + height > s.surface.clearance {
+            break;
+        }
+    }
+    Ok(ids)
+}
+
+/// Like [`fit`] but only against `extra` (items of the same layer), for upper pile layers.
+fn fit_ignoring_surface(
+    _state: &StageState,
+    s: &SurfaceRef,
+    rec: &AssetRecord,
+    rot: &UnitQuaternion<f64>,
+    extra: &[Slot],
+) -> Option<(Pose, Slot)> {
+    let (lo, hi) = rotated_bounds(rec, rot);
+    let (hu, hv) = ((hi[0] - lo[0]) / 2.0, (hi[1] - lo[1]) / 2.0);
+    let (su, sv) = (s.surface.size[0] / 2.0 - hu, s.surface.size[1] / 2.0 - hv);
+    if su < 0.0 || sv < 0.0 {
+        return None;
+    }
+    let mut v = sv;
+    while v >= -sv - 1e-9 {
+        let mut u = -su;
+        while u <= su + 1e-9 {
+            let slot = Slot { u, v, hu, hv };
+            if !extra.iter().any(|o| o.overlaps(&slot)) {
+                let local = Pose(nalgebra::Isometry3::from_parts(
+                    nalgebra::Translation3::new(
+                        u - (lo[0] + hi[0]) / 2.0,
+                        v - (lo[1] + hi[1]) / 2.0,
+                        -lo[2] + LIFT,
+                    ),
+                    *rot,
+                ));
+                return Some((s.world_from_surface().compose(&local), slot));
+            }
+            u += 0.01;
+        }
+        v -= 0.01;
+    }
+    None
+}
+
+fn place_pile(state: &mut StageState, a: GroupArgs) -> Result<PlaceResult, ToolError> {
+    if a.count == 0 || a.count > 60 {
+        return Err(ToolError::bad_args("count must be between 1 and 60"));
+    }
+    let s = find_surface(state, &a.surface)?;
+    let routed = state.route_asset(&a.description, None)?;
+    let ids = place_layers(state, &s, &routed, a.count)?;
+    if ids.is_empty() {
+        return Err(ToolError::failed(format!(
+            "no room for a pile on {}",
+            s.key()
+        )));
+    }
+    let notes = if (ids.len() as u32) < a.count {
+        vec![format!(
+            "only {} of {} fit on {}",
+            ids.len(),
+            a.count,
+            s.key()
+        )]
+    } else {
+        vec![]
+    };
+    result_for(state, &ids, notes)
+}
+
+/// Fill a container.
+#[derive(Debug, Deserialize, JsonSchema)]
+pub struct FillArgs {
+    /// Id of the container object (bowl, bin, basket, box, refrigerator...).
+    pub container: String,
+    /// What to put in it, e.g. "apple".
+    pub description: String,
+    /// How many.
+    pub count: u32,
+}
+
+fn place_inside(state: &mut StageState, a: FillArgs) -> Result<PlaceResult, ToolError> {
+    if a.count == 0 || a.count > 60 {
+        return Err(ToolError::bad_args("count must be between 1 and 60"));
+    }
+    let container = state
+        .scene
+        .scene
+        .object(&a.container)
+        .cloned()
+        .ok_or_else(|| ToolError::failed(format!("no object {:?}", a.container)))?;
+    let rec = state.scene.scene.assets[&container.asset].clone();
+    if rec.surfaces.is_empty() {
+        return Err(ToolError::failed(format!(
+            "{} has no inside or top surface to fill",
+            a.container
+        )));
+    }
+    let routed = state.route_asset(&a.description, None)?;
+    let mut ids = Vec::new();
+    // Cavities first (surface ids starting with "inside"), then shelves, then the rest.
+    let mut surfaces = rec.surfaces.clone();
+    surfaces.sort_by_key(|s| {
+        (
+            !s.id.starts_with("inside"),
+            !s.id.starts_with("shelf"),
+            s.id.clone(),
+        )
+    });
+    for surface in surfaces {
+        if ids.len() as u32 >= a.count {
+            break;
+        }
+        let s = SurfaceRef {
+            parent: container.clone(),
+            surface,
+        };
+        let more = place_layers(state, &s, &routed, a.count - ids.len() as u32)?;
+        ids.extend(more);
+    }
+    if ids.is_empty() {
+        return Err(ToolError::failed(format!(
+            "nothing fits inside {}",
+            a.container
+        )));
+    }
+    let notes = if (ids.len() as u32) < a.count {
+        vec![format!(
+            "only {} of {} fit in {}",
+            ids.len(),
+            a.count,
+            a.container
+        )]
+    } else {
+        vec![]
+    };
+    result_for(state, &ids, notes)
+}
+
+/// Item offsets of a place setting: (u across, v towards the table centre) from the edge
+/// point in front of the seat, metres; and a yaw for cutlery.
+fn setting_offset(noun: &str) -> (f64, f64, f64) {
+    match noun {
+        "plate" | "dinner plate" | "dish" => (0.0, 0.19, 0.0),
+        "fork" => (-0.17, 0.19, 0.0),
+        "knife" => (0.17, 0.19, 0.0),
+        "spoon" => (0.21, 0.19, 0.0),
+        "napkin" => (-0.24, 0.17, 0.0),
+        "glass" | "wine glass" | "cup" | "mug" | "teacup" => (0.19, 0.36, 0.0),
+        _ => (-0.2, 0.36, 0.0),
+    }
+}
+
+fn place_settings(state: &mut StageState, a: SettingsArgs) -> Result<PlaceResult, ToolError> {
+    let s = find_surface(state, &a.surface)?;
+    // Seats: chairs, stools and benches near the table whose front faces it.
+    let table_xy = s.world_from_surface().translation();
+    let (hw, hd) = (s.surface.size[0] / 2.0, s.surface.size[1] / 2.0);
+    let surface_from_world = s.world_from_surface().inverse();
+    let mut seats: Vec<(f64, f64, f64)> = Vec::new(); // edge point (u, v) and inward yaw
+    for o in state.room_objects() {
+        if !matches!(
+            o.category.as_str(),
+            "chair" | "stool" | "bar stool" | "bench" | "armchair"
+        ) {
+            continue;
+        }
+        let local = surface_from_world.compose(&o.world_from_object);
+        let p = local.translation();
+        let front = local.transform_vector(&Vector3::y());
+        let dist_out_u = p.x.abs() - hw;
+        let dist_out_v = p.y.abs() - hd;
+        if dist_out_u > 0.8 || dist_out_v > 0.8 || (dist_out_u < 0.0 && dist_out_v < 0.0) {
+            continue;
+        }
+        let to_center = Vector3::new(-p.x, -p.y, 0.0).normalize();
+        if front.dot(&to_center) < 0.5 {
+            continue;
+        }
+        // Edge point: project the seat onto the nearest table edge.
+        let (eu, ev, inward) = if dist_out_v >= dist_out_u {
+            (
+                p.x.clamp(-hw, hw),
+                hd * p.y.signum(),
+                if p.y > 0.0 { std::f64::consts::PI } else { 0.0 },
+            )
+        } else {
+            (
+                hw * p.x.signum(),
+                p.y.clamp(-hd, hd),
+                if p.x > 0.0 {
+                    std::f64::consts::FRAC_PI_2
+                } else {
+                    -std::f64::consts::FRAC_PI_2
+                },
+            )
+        };
+        seats.push((eu, ev, inward));
+    }
+    let _ = table_xy;
+    if seats.is_empty() {
+        return Err(ToolError::failed(format!(
+            "no seats face {}; place chairs first or use place_on_surface",
+            s.parent.id
+        )));
+    }
+    let n = a
+        .settings
+        .map(|n| n as usize)
+        .unwrap_or(seats.len())
+        .min(seats.len());
+    let mut ids = Vec::new();
+    let mut notes = Vec::new();
+    for &(eu, ev, inward) in seats.iter().take(n) {
+        let (sin, cos) = inward.sin_cos();
+        for item in &a.items {
+            let routed = match state.route_asset(item, None) {
+                Ok(r) => r,
+                Err(e) => {
+                    notes.push(e.message);
+                    continue;
+                }
+            };
+            let rec = state.scene.scene.assets[&routed.asset].clone();
+            let (du, dv, yaw) = setting_offset(&routed.category);
+            // Rotate the (across, inward) offset into the surface frame.
+            let u = eu + du * cos - dv * sin;
+            let v = ev + du * sin + dv * cos;
+            match fit(
+                state,
+                &s,
+                &rec,
+                &item_rotation(inward.to_degrees() + yaw, false),
+                Some((u, v)),
+                &[],
+            ) {
+                Ok((pose, _)) => {
+                    ids.push(add_item(state, &routed, pose, &s.parent.id, &s.surface.id))
+                }
+                Err(e) => notes.push(format!("{item}: {e}")),
+            }
+        }
+    }
+    if ids.is_empty() {
+        return Err(ToolError::failed(format!(
+            "no place setting fits: {}",
+            notes.join("; ")
+        )));
+    }
+    result_for(state, &ids, notes)
+}
+
+/// A surface as the agents see it.
+#[derive(Debug, Serialize, JsonSchema)]
+pub struct SurfaceInfo {
+    /// `object_id/surface_id`.
+    pub surface: String,
+    /// Supporting object's category.
+    pub category: String,
+    /// Size along u and v, metres.
+    pub size_m: [f64; 2],
+    /// Height above the floor, metres.
+    pub height_m: f64,
+    /// Free height above it, metres.
+    pub clearance_m: f64,
+    /// Objects on it (directly or stacked).
+    pub objects: Vec<String>,
+    /// Fraction of its area covered.
+    pub occupancy: f64,
+}
+
+/// Surfaces to inspect.
+#[derive(Debug, Deserialize, JsonSchema, Default)]
+pub struct SurfacesArgs {
+    /// Object id; the stage's supporting entity (or every object of the room) when omitted.
+    #[serde(default)]
+    pub object: Option<String>,
+}
+
+/// All surfaces of the objects in the room (or of one object).
+pub fn surfaces(state: &StageState, object: Option<&str>) -> Vec<SurfaceRef> {
+    state
+        .room_objects()
+        .filter(|o| object.is_none_or(|id| o.id == id))
+        .filter(|o| o.kind != ObjectKind::Manipuland || object.is_some())
+        .flat_map(|o| {
+            let rec = state.scene.scene.assets.get(&o.asset);
+            rec.into_iter()
+                .flat_map(|r| r.surfaces.clone())
+                .map(|s| SurfaceRef {
+                    parent: o.clone(),
+                    surface: s,
+                })
+        })
+        .collect()
+}
+
+fn observe_surfaces(
+    state: &mut StageState,
+    a: SurfacesArgs,
+) -> Result<Vec<SurfaceInfo>, ToolError> {
+    let focus = a.object.or_else(|| state.entity.clone());
+    let list = surfaces(state, focus.as_deref());
+    Ok(list
+        .iter()
+        .map(|s| {
+            let slots = occupied(state, s);
+            let covered: f64 = slots.iter().map(|sl| 4.0 * sl.hu * sl.hv).sum();
+            let area = s.surface.size[0] * s.surface.size[1];
+            let mut objects: Vec<String> = state
+                .scene
+                .scene
+                .objects
+                .iter()
+                .filter(|o| matches!(&o.support, Support::Object { parent, surface } if *parent == s.parent.id && *surface == s.surface.id))
+                .map(|o| o.id.clone())
+                .collect();
+            objects.extend(stacked_on(state, &objects));
+            SurfaceInfo {
+                surface: s.key(),
+                category: s.parent.category.clone(),
+                size_m: [common::round3(s.surface.size[0]), common::round3(s.surface.size[1])],
+                height_m: common::round3(s.world_from_surface().translation().z),
+                clearance_m: common::round3(s.surface.clearance),
+                occupancy: common::round3((covered / area.max(1e-9)).min(1.0)),
+                objects,
+            }
+        })
+        .collect())
+}
+
+/// Ids of everything resting (transitively) on `ids`.
+fn stacked_on(state: &StageState, ids: &[String]) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut frontier: Vec<String> = ids.to_vec();
+    while let Some(p) = frontier.pop() {
+        for o in &state.scene.scene.objects {
+            if matches!(&o.support, Support::Object { parent, .. } if *parent == p)
+                && !out.contains(&o.id)
+                && !ids.contains(&o.id)
+            {
+                out.push(o.id.clone());
+                frontier.push(o.id.clone());
+            }
+        }
+    }
+    out
+}
+
+/// Every object resting (transitively) on `entity`.
+pub fn items_on(state: &StageState, entity: &str) -> Vec<String> {
+    stacked_on(state, &[entity.to_string()])
+}
+
+/// The manipuland stage's tools.
+pub fn toolbox() -> Toolbox<StageState> {
+    let mut t = Toolbox::new();
+    common::register(&mut t);
+    t.add("observe_surfaces", "List the support surfaces (of the stage's entity, or one object) with size, height, free height, occupancy and the objects on them.", Access::Observe, observe_surfaces);
+    t.add("place_on_surface", "Place one small object on a surface at (u, v) or at the first free spot; lay_flat lays it on its side.", Access::Modify, place_on_surface);
+    t.add("place_stack", "Stack several identical objects (plates, bowls, books, boxes) at one spot; they nest where their shape allows.", Access::Modify, place_stack);
+    t.add(
+        "place_pile",
+        "Pile several identical objects loosely in layers on a surface (blocks, fruit, towels).",
+        Access::Modify,
+        place_pile,
+    );
+    t.add("place_inside", "Put several identical objects inside a container object (bowl, bin, basket, box, refrigerator).", Access::Modify, place_inside);
+    t.add("place_settings", "Lay place settings on a table top: the given items in front of every seat facing the table (or the given number of settings).", Access::Modify, place_settings);
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assets::procedural::{AssetRequest, build};
+
+    #[test]
+    fn plates_nest_books_do_not() {
+        let plate = build(&AssetRequest::new("plate", 1)).unwrap();
+        let [lo, hi] = plate.bounds();
+        let p = stack_pitch(&plate);
+        assert!(
+            p < 0.5 * (hi[2] - lo[2]),
+            "plates should nest: pitch {p}, height {}",
+            hi[2] - lo[2]
+        );
+        let book = build(&AssetRequest::new("book", 1)).unwrap();
+        let [lo, hi] = book.bounds();
+        let p = stack_pitch(&book);
+        assert!(
+            (p - (hi[2] - lo[2])).abs() < 0.002,
+            "upright books stack by their height: {p}"
+        );
+    }
+
+    #[test]
+    fn rotated_bounds_of_a_laid_flat_book() {
+        let book = build(&AssetRequest::new("book", 1)).unwrap();
+        let rec = book.record();
+        let (lo, hi) = rotated_bounds(&rec, &item_rotation(0.0, true));
+        let [blo, bhi] = rec.bounds;
+        // Lying on its side, the book's height is its thickness.
+        assert!(((hi[2] - lo[2]) - (bhi[0] - blo[0])).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,349 @@
+//! The built-in designer and critic of the manipuland stage (one supporting entity at a time).
+
+use serde_json::{Value, json};
+
+use super::StageState;
+use super::manipuland::{items_on, surfaces};
+use super::plan::{Arrangement, Want};
+use crate::agents::{
+    AgentCx, AgentError, Critic, Critique, DesignRequest, Designer, Issue, Role, Score,
+};
+use crate::scene::ObjectKind;
+
+/// The built-in manipuland designer.
+#[derive(Debug, Default)]
+pub struct BuiltinManipulandDesigner;
+
+fn count_on(state: &StageState, entity: &str, noun: &str) -> u32 {
+    let cat = StageState::category_of(noun).unwrap_or(noun).to_string();
+    items_on(state, entity)
+        .iter()
+        .filter(|id| {
+            state
+                .scene
+                .scene
+                .object(id)
+                .is_some_and(|o| o.category == cat)
+        })
+        .count() as u32
+}
+
+/// The entity's surface keys in filling order: shelf levels bottom-up, then tops, then others.
+fn surface_order(state: &StageState, entity: &str) -> Vec<String> {
+    let mut list: Vec<(String, f64)> = surfaces(state, Some(entity))
+        .iter()
+        .map(|s| (s.key(), s.surface.center[2]))
+        .collect();
+    list.sort_by(|a, b| a.1.total_cmp(&b.1));
+    list.into_iter().map(|(k, _)| k).collect()
+}
+
+impl BuiltinManipulandDesigner {
+    fn fill_want(
+        state: &mut StageState,
+        cx: &mut AgentCx<'_, StageState>,
+        entity: &str,
+        want: &Want,
+        lay_flat_first: bool,
+    ) {
+        let mut need = want
+            .count
+            .saturating_sub(count_on(state, entity, &want.noun));
+        if need == 0 {
+            return;
+        }
+        let order = surface_order(state, entity);
+        match &want.arrangement {
+            Arrangement::Stack | Arrangement::Pile => {
+                let tool = if want.arrangement == Arrangement::Stack {
+                    "place_stack"
+                } else {
+                    "place_pile"
+                };
+                for key in &order {
+                    if need == 0 {
+                        break;
+                    }
+                    if let Ok(v) = cx.call(
+                        state,
+                        Role::Designer,
+                        tool,
+                        json!({"description": want.description, "count": need, "surface": key}),
+                    ) {
+                        need = need
+                            .saturating_sub(v["placed"].as_array().map_or(0, |a| a.len() as u32));
+                    }
+                }
+            }
+            Arrangement::Inside { parent } => {
+                let containers: Vec<String> = state
+                    .room_objects()
+                    .filter(|o| StageState::category_of(parent) == Some(o.category.as_str()))
+                    .map(|o| o.id.clone())
+                    .collect();
+                for c in containers {
+                    if need == 0 {
+                        break;
+                    }
+                    if let Ok(v) = cx.call(
+                        state,
+                        Role::Designer,
+                        "place_inside",
+                        json!({"container": c, "description": want.description, "count": need}),
+                    ) {
+                        need = need
+                            .saturating_sub(v["placed"].as_array().map_or(0, |a| a.len() as u32));
+                    }
+                }
+            }
+            _ => {}
+        }
+        for key in &order {
+            for flat in [lay_flat_first, !lay_flat_first] {
+                while need > 0 {
+                    let r = cx.call(
+                        state,
+                        Role::Designer,
+                        "place_on_surface",
+                        json!({"description": want.description, "surface": key, "lay_flat": flat}),
+                    );
+                    if r.is_err() {
+                        break;
+                    }
+                    need -= 1;
+                }
+            }
+        }
+    }
+
+    fn build(state: &mut StageState, cx: &mut AgentCx<'_, StageState>, alternate: bool) {
+        let Some(entity) = state.entity.clone() else {
+            return;
+        };
+        let groups = state.plan.surfaces.clone();
+        for group in &groups {
+            if group.place_settings {
+                let seats = group.items.iter().map(|w| w.count).min().unwrap_or(0);
+                let present = group
+                    .items
+                    .iter()
+                    .map(|w| count_on(state, &entity, &w.noun))
+                    .min()
+                    .unwrap_or(0);
+                if seats > present {
+                    let items: Vec<String> =
+                        group.items.iter().map(|w| w.description.clone()).collect();
+                    let surface = format!("{entity}/top");
+                    let _ = cx.call(
+                        state,
+                        Role::Designer,
+                        "place_settings",
+                        json!({"surface": surface, "items": items, "settings": seats - present}),
+                    );
+                }
+            }
+            for want in &group.items {
+                Self::fill_want(state, cx, &entity, want, alternate);
+            }
+        }
+    }
+
+    fn repair(state: &mut StageState, cx: &mut AgentCx<'_, StageState>) {
+        if let Ok(v) = cx.call(state, Role::Designer, "check_collisions", json!({})) {
+            let mut doomed = Vec::new();
+            for c in v["collisions"].as_array().into_iter().flatten() {
+                for key in ["b", "a"] {
+                    if let Some(id) = c[key].as_str()
+                        && state
+                            .scene
+                            .scene
+                            .object(id)
+                            .is_some_and(|o| o.kind == ObjectKind::Manipuland)
+                    {
+                        doomed.push(id.to_string());
+                        break;
+                    }
+                }
+            }
+            doomed.dedup();
+            for id in doomed {
+                let _ = cx.call(state, Role::Designer, "remove_object", json!({"id": id}));
+            }
+        }
+    }
+}
+
+impl Designer<StageState> for BuiltinManipulandDesigner {
+    fn design(
+        &mut self,
+        state: &mut StageState,
+        request: &DesignRequest,
+        cx: &mut AgentCx<'_, StageState>,
+    ) -> Result<String, AgentError> {
+        let _ = cx.call(state, Role::Designer, "observe_surfaces", json!({}));
+        match request {
+            DesignRequest::Initial => Self::build(state, cx, false),
+            _ => {
+                Self::repair(state, cx);
+                Self::build(state, cx, cx.attempt % 2 == 1);
+            }
+        }
+        let n = state
+            .entity
+            .as_deref()
+            .map_or(0, |e| items_on(state, e).len());
+        Ok(format!(
+            "{n} objects on {}",
+            state.entity.as_deref().unwrap_or("?")
+        ))
+    }
+}
+
+/// The built-in manipuland critic.
+#[derive(Debug, Default)]
+pub struct BuiltinManipulandCritic;
+
+impl Critic<StageState> for BuiltinManipulandCritic {
+    fn critique(
+        &mut self,
+        state: &mut StageState,
+        cx: &mut AgentCx<'_, StageState>,
+    ) -> Result<Critique, AgentError> {
+        let unusable = |m: String| AgentError::Unusable {
+            role: "critic",
+            stage: "manipuland".into(),
+            message: m,
+        };
+        let surfaces_v = cx
+            .call(state, Role::Critic, "observe_surfaces", json!({}))
+            .map_err(|e| unusable(e.message))?;
+        let collisions = cx
+            .call(state, Role::Critic, "check_collisions", json!({}))
+            .map_err(|e| unusable(e.message))?;
+        let entity = state.entity.clone().unwrap_or_default();
+        let mine = items_on(state, &entity);
+        let mut issues = Vec::new();
+
+        let (mut wanted, mut got) = (0u32, 0u32);
+        for group in &state.plan.surfaces {
+            for w in &group.items {
+                let have = count_on(state, &entity, &w.noun);
+                wanted += w.count;
+                got += have.min(w.count);
+                if have < w.count {
+                    issues.push(Issue {
+                        objects: vec![entity.clone()],
+                        description: format!(
+                            "put {} more {} on {entity} (asked {}, have {have})",
+                            w.count - have,
+                            w.noun,
+                            w.count
+                        ),
+                    });
+                }
+            }
+        }
+        let coverage = if wanted == 0 {
+            1.0
+        } else {
+            f64::from(got) / f64::from(wanted)
+        };
+
+        // Realism: objects upright unless they lie flat on purpose (books, cutlery).
+        let mut tilted = 0;
+        for id in &mine {
+            if let Some(o) = state.scene.scene.object(id) {
+                let up = o
+                    .world_from_object
+                    .transform_vector(&nalgebra::Vector3::z());
+                let lies = matches!(o.category.as_str(), "book" | "fork" | "knife" | "spoon");
+                if up.z < 0.9 && !lies {
+                    tilted += 1;
+                    issues.push(Issue {
+                        objects: vec![id.clone()],
+                        description: format!("{id} is tipped over; stand it upright"),
+                    });
+                }
+            }
+        }
+        let realism = if mine.is_empty() {
+            10.0
+        } else {
+            10.0 - 10.0 * tilted as f64 / mine.len() as f64
+        };
+
+        // Arrangement: no surface crammed beyond 85 % (objects need room to be grasped).
+        let mut crammed = 0;
+        for s in surfaces_v.as_array().into_iter().flatten() {
+            let occ = s["occupancy"].as_f64().unwrap_or(0.0);
+            if occ > 0.85 {
+                crammed += 1;
+                issues.push(Issue {
+                    objects: vec![],
+                    description: format!(
+                        "{} is {:.0}% covered; spread items to other surfaces",
+                        s["surface"].as_str().unwrap_or_default(),
+                        occ * 100.0
+                    ),
+                });
+            }
+        }
+        let arrangement = 10.0 - 2.0 * f64::from(crammed);
+
+        let pairs: Vec<&Value> = collisions["collisions"]
+            .as_array()
+            .map(|a| {
+                a.iter()
+                    .filter(|p| {
+                        mine.iter()
+                            .any(|m| p["a"] == m.as_str() || p["b"] == m.as_str())
+                    })
+                    .collect()
+            })
+            .unwrap_or_default();
+        for p in &pairs {
+            issues.push(Issue {
+                objects: vec![
+                    p["a"].as_str().unwrap_or_default().into(),
+                    p["b"].as_str().unwrap_or_default().into(),
+                ],
+                description: format!(
+                    "{} and {} overlap; move or remove one",
+                    p["a"].as_str().unwrap_or_default(),
+                    p["b"].as_str().unwrap_or_default()
+                ),
+            });
+        }
+        let physics = 10.0 - 3.0 * pairs.len() as f64;
+        let s = |c: &str, v: f64, r: String| Score {
+            category: c.into(),
+            score: v.round().clamp(0.0, 10.0) as u8,
+            reason: r,
+        };
+        Ok(Critique {
+            scores: vec![
+                s(
+                    "prompt_following",
+                    10.0 * coverage,
+                    format!("{got} of {wanted} requested objects on {entity}"),
+                ),
+                s(
+                    "realism",
+                    realism,
+                    format!("{tilted} of {} objects tipped over", mine.len()),
+                ),
+                s(
+                    "arrangement",
+                    arrangement,
+                    format!("{crammed} crammed surfaces"),
+                ),
+                s(
+                    "physical_feasibility",
+                    physics,
+                    format!("{} penetrating pairs", pairs.len()),
+                ),
+            ],
+            issues,
+        })
+    }
+}

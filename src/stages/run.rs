@@ -1,0 +1,392 @@
+//! Runs the placement stages of every room through the agent loop: furniture, wall, ceiling,
+//! then the manipuland stage once per supporting entity, with the built-in backend or an LLM.
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use super::checkpoint::{CheckpointStore, NoCheckpoints};
+use super::plan::{RoomPlan, SurfaceWant, Want};
+use super::{
+    SceneState, StageKind, StageState, ceiling, furniture, furniture_builtin, manipuland,
+    manipuland_builtin, wall,
+};
+use crate::agents::llm::{LlmConfig, LlmCritic, LlmDesigner, LlmOrchestrator, SharedTransport};
+use crate::agents::{
+    AgentError, BuiltinOrchestrator, CategorySpec, Critic, Critique, Designer, Orchestrator,
+    PlacementStyle, RunLog, StageConfig, StageSpec, Toolbox, run_stage,
+};
+use crate::scene::ObjectKind;
+
+/// Which agents run the stages.
+#[derive(Clone)]
+pub enum Backend {
+    /// The offline rule-based designers and measurement-based critics.
+    Builtin,
+    /// An OpenAI-compatible chat model for every role.
+    Llm {
+        /// Shared transport (HTTP or replay).
+        transport: SharedTransport,
+        /// Model settings.
+        config: LlmConfig,
+    },
+}
+
+impl Backend {
+    /// Name recorded in `scene.json`.
+    pub fn name(&self) -> String {
+        match self {
+            Backend::Builtin => "builtin".into(),
+            Backend::Llm { config, .. } => format!("llm:{}", config.model),
+        }
+    }
+}
+
+/// What a stage kept, for the run summary.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct StageSummary {
+    /// Stage name.
+    pub stage: String,
+    /// Room.
+    pub room: String,
+    /// Supporting entity (manipuland stage).
+    pub entity: Option<String>,
+    /// Scores of the kept checkpoint.
+    pub critique: Option<Critique>,
+    /// Critique rounds run.
+    pub rounds: usize,
+    /// Wall time of the stage (agents and tools), seconds; not written to `scene.json`.
+    pub seconds: f64,
+}
+
+fn stage_config(kind: StageKind) -> StageConfig {
+    match kind {
+        StageKind::Manipuland => StageConfig {
+            max_rounds: 2,
+            early_finish_min_score: 9,
+            ..StageConfig::default()
+        },
+        _ => StageConfig {
+            max_rounds: 3,
+            early_finish_min_score: 9,
+            ..StageConfig::default()
+        },
+    }
+}
+
+/// Placement style from the prompt: showrooms, stores and galleries look perfect.
+fn style_for(room_type: &str, prompt: &str) -> PlacementStyle {
+    let p = prompt.to_lowercase();
+    let perfect = [
+        "showroom",
+        "store",
+        "shop",
+        "gallery",
+        "museum",
+        "lobby",
+        "conference",
+        "pristine",
+        "minimalist",
+    ];
+    if perfect
+        .iter()
+        .any(|w| p.contains(w) || room_type.contains(w))
+    {
+        PlacementStyle::Perfect
+    } else {
+        PlacementStyle::Natural
+    }
+}
+
+fn brief(state: &StageState) -> String {
+    let room = state.scene.scene.room(&state.room);
+    let (ty, prompt, size) = room
+        .map(|r| {
+            let (lo, hi) = crate::geometry::polygon::bounds(&r.floor_polygon);
+            (
+                r.room_type.clone(),
+                r.prompt.clone(),
+                [hi[0] - lo[0], hi[1] - lo[1]],
+            )
+        })
+        .unwrap_or_default();
+    let wants: Vec<&Want> = match state.kind {
+        StageKind::Furniture => state.plan.furniture.iter().collect(),
+        StageKind::Wall => state.plan.wall.iter().collect(),
+        StageKind::Ceiling => state.plan.ceiling.iter().collect(),
+        _ => state.plan.surfaces.iter().flat_map(|s| &s.items).collect(),
+    };
+    let list = wants
+        .iter()
+        .map(|w| {
+            format!(
+                "{} x{}{}",
+                w.description,
+                w.count,
+                if w.explicit { " (requested)" } else { "" }
+            )
+        })
+        .collect::<Vec<_>>()
+        .join(", ");
+    let focus = state
+        .entity
+        .as_ref()
+        .map(|e| format!(" Supporting entity: {e}."))
+        .unwrap_or_default();
+    format!(
+        "Room {} ({ty}, {:.1} x {:.1} m).{focus} Room prompt: \"{prompt}\". Planned for this stage: {}. Excluded: {}.",
+        state.room,
+        size[0],
+        size[1],
+        if list.is_empty() {
+            "nothing in particular".to_string()
+        } else {
+            list
+        },
+        if state.plan.excluded.is_empty() {
+            "nothing".to_string()
+        } else {
+            state.plan.excluded.join(", ")
+        }
+    )
+}
+
+type Agents = (
+    Box<dyn Designer<StageState>>,
+    Box<dyn Critic<StageState>>,
+    Box<dyn Orchestrator>,
+);
+
+fn agents(backend: &Backend, kind: StageKind, style: PlacementStyle, brief_text: &str) -> Agents {
+    match backend {
+        Backend::Builtin => {
+            let orch = Box::new(BuiltinOrchestrator::with_style(style));
+            match kind {
+                StageKind::Furniture => (
+                    Box::new(furniture_builtin::BuiltinFurnitureDesigner),
+                    Box::new(furniture_builtin::BuiltinFurnitureCritic),
+                    orch,
+                ),
+                StageKind::Wall => (
+                    Box::new(wall::BuiltinWallDesigner),
+                    Box::new(wall::BuiltinWallCritic),
+                    orch,
+                ),
+                StageKind::Ceiling => (
+                    Box::new(ceiling::BuiltinCeilingDesigner),
+                    Box::new(ceiling::BuiltinCeilingCritic),
+                    orch,
+                ),
+                _ => (
+                    Box::new(manipuland_builtin::BuiltinManipulandDesigner),
+                    Box::new(manipuland_builtin::BuiltinManipulandCritic),
+                    orch,
+                ),
+            }
+        }
+        Backend::Llm { transport, config } => {
+            let mut orch = LlmOrchestrator::new(transport.clone(), config.clone());
+            orch.set_stage(kind.as_str(), brief_text);
+            (
+                Box::new(LlmDesigner::new(transport.clone(), config.clone())),
+                Box::new(LlmCritic::new(transport.clone(), config.clone())),
+                Box::new(orch),
+            )
+        }
+    }
+}
+
+fn tools_and_categories(kind: StageKind) -> (Toolbox<StageState>, Vec<CategorySpec>) {
+    match kind {
+        StageKind::Furniture => (furniture::toolbox(), furniture::categories()),
+        StageKind::Wall => (wall::toolbox(), wall::categories()),
+        StageKind::Ceiling => (ceiling::toolbox(), ceiling::categories()),
+        _ => (manipuland::toolbox(), manipuland::categories()),
+    }
+}
+
+/// Where a stage run writes what happened.
+struct Recorder<'a> {
+    log: &'a mut RunLog,
+    summaries: Vec<StageSummary>,
+}
+
+/// Runs one stage for a room (or one entity of it) and returns the kept scene.
+fn run_one(
+    scene: SceneState,
+    kind: StageKind,
+    room: &str,
+    entity: Option<String>,
+    plan: Arc<RoomPlan>,
+    backend: &Backend,
+    rec: &mut Recorder<'_>,
+) -> Result<SceneState, AgentError> {
+    let state = StageState {
+        scene,
+        kind,
+        room: room.to_string(),
+        entity: entity.clone(),
+        plan,
+        requests: 0,
+    };
+    let text = brief(&state);
+    let style = state
+        .scene
+        .scene
+        .room(room)
+        .map(|r| style_for(&r.room_type, &state.scene.scene.provenance.prompt))
+        .unwrap_or_default();
+    let (tools, categories) = tools_and_categories(kind);
+    let (mut designer, mut critic, mut orchestrator) = agents(backend, kind, style, &text);
+    let spec = StageSpec {
+        name: kind.as_str(),
+        categories: &categories,
+        toolbox: &tools,
+        brief: &text,
+    };
+    let t0 = std::time::Instant::now();
+    let outcome = run_stage(
+        &spec,
+        state,
+        designer.as_mut(),
+        critic.as_mut(),
+        orchestrator.as_mut(),
+        &stage_config(kind),
+        rec.log,
+    )?;
+    rec.summaries.push(StageSummary {
+        stage: kind.as_str().into(),
+        room: room.into(),
+        entity,
+        critique: outcome.critique.clone(),
+        rounds: outcome.history.len(),
+        seconds: t0.elapsed().as_secs_f64(),
+    });
+    Ok(outcome.state.scene)
+}
+
+/// Splits the room's small objects over the supporting entities present: per entity a plan
+/// holding only that entity's share.
+fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String, RoomPlan)> {
+    let furniture: Vec<(String, String)> = scene
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.room == room && o.kind == ObjectKind::Furniture)
+        .filter(|o| {
+            scene
+                .scene
+                .assets
+                .get(&o.asset)
+                .is_some_and(|a| !a.surfaces.is_empty())
+        })
+        .map(|o| (o.id.clone(), o.category.clone()))
+        .collect();
+    let mut per: BTreeMap<String, RoomPlan> = BTreeMap::new();
+    for group in &plan.surfaces {
+        let mut hosts: Vec<&(String, String)> = furniture
+            .iter()
+            .filter(|(_, cat)| {
+                group.parent == "any"
+                    || super::StageState::category_of(&group.parent) == Some(cat.as_str())
+            })
+            .collect();
+        if hosts.is_empty() {
+            // Nothing of the wanted kind: any furniture with a surface, tables first.
+            hosts = furniture.iter().filter(|(_, c)| c != "chair").collect();
+            hosts.sort_by_key(|(_, c)| !matches!(c.as_str(), "table" | "desk" | "counter"));
+        }
+        if hosts.is_empty() {
+            continue;
+        }
+        let n = hosts.len() as u32;
+        for (i, (id, cat)) in hosts.iter().enumerate() {
+            let items: Vec<Want> = group
+                .items
+                .iter()
+                .map(|w| {
+                    // Even split; the first hosts take the remainder.
+                    let share = w.count / n + u32::from((i as u32) < w.count % n);
+                    Want {
+                        count: share,
+                        ..w.clone()
+                    }
+                })
+                .filter(|w| w.count > 0)
+                .collect();
+            if items.is_empty() {
+                continue;
+            }
+            let entry = per.entry(id.clone()).or_insert_with(|| RoomPlan {
+                excluded: plan.excluded.clone(),
+                ..RoomPlan::default()
+            });
+            entry.surfaces.push(SurfaceWant {
+                parent: cat.clone(),
+                items,
+                place_settings: group.place_settings,
+            });
+        }
+    }
+    per.into_iter().collect()
+}
+
+/// Runs every placement stage of one room.
+pub fn furnish_room(
+    scene: SceneState,
+    room: &str,
+    plan: RoomPlan,
+    backend: &Backend,
+    log: &mut RunLog,
+) -> Result<(SceneState, Vec<StageSummary>), AgentError> {
+    furnish_room_resumable(scene, room, plan, backend, log, &mut NoCheckpoints)
+}
+
+/// Runs every placement stage of one room, skipping stages `store` has from an earlier run
+/// and saving each stage that finishes.
+pub fn furnish_room_resumable(
+    scene: SceneState,
+    room: &str,
+    plan: RoomPlan,
+    backend: &Backend,
+    log: &mut RunLog,
+    store: &mut dyn CheckpointStore,
+) -> Result<(SceneState, Vec<StageSummary>), AgentError> {
+    let plan = Arc::new(plan);
+    let mut rec = Recorder {
+        log,
+        summaries: Vec::new(),
+    };
+    let mut scene = scene;
+    let mut step = |scene: SceneState,
+                    kind: StageKind,
+                    entity: Option<String>,
+                    plan: Arc<RoomPlan>,
+                    rec: &mut Recorder<'_>|
+     -> Result<SceneState, AgentError> {
+        let key = match &entity {
+            Some(e) => format!("{room}/{}/{e}", kind.as_str()),
+            None => format!("{room}/{}", kind.as_str()),
+        };
+        if let Some((saved, saved_log)) = store.load(&key) {
+            *rec.log = saved_log;
+            return Ok(saved);
+        }
+        let out = run_one(scene, kind, room, entity, plan, backend, rec)?;
+        store.save(&key, &out, rec.log);
+        Ok(out)
+    };
+    for kind in [StageKind::Furniture, StageKind::Wall, StageKind::Ceiling] {
+        scene = step(scene, kind, None, plan.clone(), &mut rec)?;
+    }
+    for (entity, eplan) in entity_plans(&scene, room, &plan) {
+        scene = step(
+            scene,
+            StageKind::Manipuland,
+            Some(entity),
+            Arc::new(eplan),
+            &mut rec,
+        )?;
+    }
+    scene.prune_assets();
+    Ok((scene, rec.summaries))
+}
