@@ -64,7 +64,26 @@ def op_mujoco_check(args):
     args: xml (path), seconds (default 5), probe_joints ({joint: torque}, optional: applies a
     constant generalized force to those hinge/slide joints during the run and reports their
     final positions).
+
+    MuJoCo's warnings are collected into the reply's `messages` instead of MuJoCo's default
+    (stderr plus a MUJOCO_LOG.TXT in the working directory).
     """
+    import mujoco
+
+    messages = []
+    previous = mujoco.get_mju_user_warning()
+    mujoco.set_mju_user_warning(lambda msg: messages.append(str(msg).strip()))
+    try:
+        result = _mujoco_check(args)
+    except mujoco.FatalError as e:
+        raise ModelError(f"MuJoCo failed on {args.get('xml')}: {e}") from e
+    finally:
+        mujoco.set_mju_user_warning(previous)
+    result["messages"] = messages
+    return result
+
+
+def _mujoco_check(args):
     import mujoco
 
     path = _path_arg(args, "xml")
@@ -160,6 +179,8 @@ def op_mujoco_check(args):
     for w in mujoco.mjtWarning.__members__.values():
         if w.value < mujoco.mjtWarning.mjNWARNING.value and data.warning[w.value].number > 0:
             warnings[w.name] = int(data.warning[w.value].number)
+    # MuJoCo resets the state when it turns non-finite or huge and only leaves a warning.
+    finite = finite and not any(w.startswith("mjWARN_BADQ") for w in warnings)
     return {
         "mujoco": mujoco.__version__,
         "load_seconds": load_s,

@@ -92,6 +92,25 @@ def test_mujoco_probe_turns_a_hinge_within_its_range(mjcf):
     assert -0.02 <= pushed["probe"]["cab_0/hinge"] <= 0.01
 
 
+def test_mujoco_instability_is_reported_and_nothing_is_logged_to_disk(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    path = tmp_path / "unstable.xml"
+    path.write_text('<mujoco><option gravity="0 0 -1e300"/><worldbody><body><freejoint/>'
+                    '<geom type="box" size="0.05 0.05 0.05"/></body></worldbody></mujoco>')
+    r = conformance.op_mujoco_check({"xml": str(path), "seconds": 0.1})
+    assert r["finite"] is False
+    assert "mjWARN_BADQACC" in r["warnings"]
+    assert any("unstable" in m for m in r["messages"])
+    assert not (tmp_path / "MUJOCO_LOG.TXT").exists()
+    tiny = tmp_path / "tiny_arena.xml"
+    tiny.write_text('<mujoco><size memory="20K"/><worldbody><geom type="plane" size="1 1 0.1"/>'
+                    + "".join(f'<body pos="0 0 {0.05 + i * 0.1}"><freejoint/>'
+                              '<geom type="box" size="0.05 0.05 0.05"/></body>' for i in range(30))
+                    + "</worldbody></mujoco>")
+    with pytest.raises(ModelError, match="out of memory"):
+        conformance.op_mujoco_check({"xml": str(tiny), "seconds": 0.1})
+
+
 def test_mujoco_check_errors(tmp_path, mjcf):
     with pytest.raises(FileMissing):
         conformance.op_mujoco_check({"xml": str(tmp_path / "none.xml")})
