@@ -113,9 +113,15 @@ impl ExportFormat {
     }
 }
 
-/// Which formats to write.
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
+/// Which formats to write; the default is every format (what `generate` writes).
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ExportSet(Vec<ExportFormat>);
+
+impl Default for ExportSet {
+    fn default() -> Self {
+        Self::all()
+    }
+}
 
 impl ExportSet {
     /// Every format.
@@ -321,6 +327,7 @@ mod tests {
     #[test]
     fn export_set_parses_lists() {
         assert_eq!(ExportSet::parse("all").unwrap(), ExportSet::all());
+        assert_eq!(ExportSet::default(), ExportSet::all());
         assert!(ExportSet::parse("none").unwrap().is_empty());
         let s = ExportSet::parse(" USD , mjcf,usd").unwrap();
         assert_eq!(s.formats(), &[ExportFormat::Mjcf, ExportFormat::Usd]);
