@@ -10,6 +10,7 @@ from pydrake.geometry import Role
 from pydrake.multibody.tree import ModelInstanceIndex
 
 from drake_bridge import BRIDGE_VERSION, PROTOCOL, asset_checks
+from drake_bridge.conformance import op_mujoco_check, op_usd_check
 from drake_bridge.errors import BadRequest
 from drake_bridge.plant_cache import PlantCache
 
@@ -219,4 +220,6 @@ OPS = {
     "project": projection.op_project,
     "settle": settle.op_settle,
     "simulate": settle.op_simulate,
+    "mujoco_check": op_mujoco_check,
+    "usd_check": op_usd_check,
 }

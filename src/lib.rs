@@ -20,6 +20,7 @@
 pub mod agents;
 pub mod assets;
 pub mod eval;
+pub mod export;
 pub mod formats;
 pub mod geometry;
 pub mod knowledge;

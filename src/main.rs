@@ -50,6 +50,28 @@ enum Command {
         resume: bool,
         #[command(flatten)]
         llm: LlmArgs,
+        /// Exports to write into DIR/export: a comma-separated list of mjcf, usd, glb, or
+        /// all / none.
+        #[arg(long, default_value = "all")]
+        export: String,
+    },
+    /// Write MuJoCo (MJCF), USD (UsdPhysics) and GLB exports of a scene directory; with
+    /// --check, load them in MuJoCo, usd-core and Drake and fail on any mismatch.
+    Export {
+        /// Scene directory.
+        dir: PathBuf,
+        /// Formats: a comma-separated list of mjcf, usd, glb, or all.
+        #[arg(long, default_value = "all")]
+        formats: String,
+        /// Run the conformance gate (MuJoCo simulation, USD physics schema, Drake load).
+        #[arg(long)]
+        check: bool,
+        /// Check the exports already in DIR/export instead of writing them first.
+        #[arg(long, requires = "check")]
+        no_write: bool,
+        /// Simulated time of the MuJoCo run, seconds.
+        #[arg(long, default_value_t = 5.0)]
+        seconds: f64,
     },
     /// Load a scene directory in Drake and report collisions; fails on any problem.
     Check {
@@ -378,6 +400,78 @@ fn run_eval(
         eprint!("{}", eval::table(&metrics));
     }
     Ok(ExitCode::SUCCESS)
+
+}
+
+fn run_export(
+    cli_json: bool,
+    dir: PathBuf,
+    formats: &str,
+    check: bool,
+    no_write: bool,
+    seconds: f64,
+) -> anyhow::Result<ExitCode> {
+    use scenesmith::export::{self, conformance};
+    let set = match export::ExportSet::parse(formats) {
+        Ok(s) if !s.is_empty() => s,
+        Ok(_) => {
+            eprintln!("error: --formats selects nothing");
+            return Ok(ExitCode::from(2));
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+    };
+    let state = scenesmith::formats::scene_dir::load_state(&dir)
+        .with_context(|| format!("reading the scene in {}", dir.display()))?;
+    let mut out = json!({ "dir": dir });
+    if !no_write {
+        let written = export::write_exports(&dir, &state, &set)
+            .with_context(|| format!("exporting {}", dir.display()))?;
+        for w in &written {
+            if !cli_json {
+                eprintln!(
+                    "wrote {} ({} files, {:.1} kB)",
+                    dir.join(&w.main_file).display(),
+                    w.files,
+                    w.bytes as f64 / 1e3
+                );
+            }
+        }
+        out["written"] = serde_json::to_value(&written)?;
+    }
+    let mut passed = true;
+    if check {
+        let mut bridge = Bridge::from_env()?;
+        let opts = conformance::GateOptions {
+            seconds,
+            formats: set,
+        };
+        let report = conformance::run_gate(&mut bridge, &dir, &state, &opts)
+            .with_context(|| format!("checking the exports of {}", dir.display()))?;
+        passed = report.passed;
+        if cli_json {
+            out["check"] = serde_json::to_value(&report)?;
+        } else {
+            eprint!("{}", conformance::table(&report));
+            if let Some(s) = &report.mujoco_stability {
+                for (id, d, a) in &s.moved {
+                    eprintln!("  moved in MuJoCo: {id}: {:.1} mm, {:.3} rad", d * 1e3, a);
+                }
+            }
+            eprintln!("  {}", if passed { "PASS" } else { "FAIL" });
+        }
+    }
+    if cli_json {
+        out["passed"] = json!(passed);
+        print_json(&out)?;
+    }
+    Ok(if passed {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
 }
 
 fn run_doctor(cli_json: bool) -> anyhow::Result<ExitCode> {
@@ -521,20 +615,35 @@ fn main() -> ExitCode {
             no_render,
             resume,
             llm,
-        } => llm.choice().and_then(|backend| {
-            run_generate(
-                cli.json,
-                GenerateOptions {
-                    prompt,
-                    seed,
-                    out,
-                    drake_check: !no_check,
-                    render: !no_render,
-                    backend,
-                    resume,
-                },
-            )
-        }),
+            export,
+        } => match scenesmith::export::ExportSet::parse(&export) {
+            Ok(exports) => llm.choice().and_then(|backend| {
+                run_generate(
+                    cli.json,
+                    GenerateOptions {
+                        prompt,
+                        seed,
+                        out,
+                        drake_check: !no_check,
+                        render: !no_render,
+                        exports,
+                        backend,
+                        resume,
+                    },
+                )
+            }),
+            Err(e) => {
+                eprintln!("error: {e}");
+                Ok(ExitCode::from(2))
+            }
+        },
+        Command::Export {
+            dir,
+            formats,
+            check,
+            no_write,
+            seconds,
+        } => run_export(cli.json, dir, &formats, check, no_write, seconds),
         Command::Check {
             dir,
             threshold,

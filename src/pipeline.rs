@@ -75,6 +75,9 @@ pub enum PipelineError {
     /// The written scene does not load or is not collision-free.
     #[error("scene check failed: {0}")]
     CheckFailed(String),
+    /// An export (MJCF, USD, GLB) could not be written.
+    #[error(transparent)]
+    Export(#[from] crate::export::ExportError),
     /// An agent failed for good (e.g. the LLM endpoint is unreachable after retries).
     #[error(transparent)]
     Agent(#[from] AgentError),
@@ -119,6 +122,8 @@ pub struct GenerateOptions {
     pub drake_check: bool,
     /// Write the annotated views into `<out>/renders/`.
     pub render: bool,
+    /// Exports written into `export/` (MJCF, USD, GLB; all by default).
+    pub exports: crate::export::ExportSet,
     /// Which agents run the stages.
     pub backend: BackendChoice,
     /// Continue after the stages an earlier, failed run of the same request finished.
@@ -169,6 +174,8 @@ pub struct GenerateSummary {
     pub post_process: PostProcessReport,
     /// The metrics written to `metrics.json`.
     pub metrics: Metrics,
+    /// Exports written.
+    pub exports: Vec<crate::export::WrittenExport>,
     /// Wall time per step, seconds.
     pub timings: Timings,
 }
@@ -392,7 +399,7 @@ type Finished = (
     BuildReport,
     Vec<collision::PairPenetration>,
     Option<CheckSummary>,
-    Box<(PostProcessReport, Metrics)>,
+    Box<(PostProcessReport, Metrics, Vec<crate::export::WrittenExport>)>,
 );
 
 /// Writes a built scene into the staging directory, checks it in Drake and commits it.
@@ -439,6 +446,10 @@ fn finish_run(
         })?;
     }
     // --- end renders ---
+    // Exports: MJCF, USD and GLB written from the same state into the staging directory.
+    let exports = timed(timings, "export", || {
+        crate::export::write_exports(staging.path(), &state, &opts.exports)
+    })?;
 
     let check = if opts.drake_check {
         let summary = timed(timings, "drake_check", || -> Result<_, PipelineError> {
@@ -474,7 +485,7 @@ fn finish_run(
         report,
         rust_pairs,
         check,
-        Box::new((post_process, metrics)),
+        Box::new((post_process, metrics, exports)),
     ))
 }
 
@@ -545,6 +556,7 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
         check,
         post_process: physics.0,
         metrics: physics.1,
+        exports: physics.2,
         timings,
     })
 }

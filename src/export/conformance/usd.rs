@@ -1,0 +1,424 @@
+//! USD rows of the gate: stage metadata, validators, rigid bodies, colliders, joints,
+//! articulations and placement, as usd-core's UsdPhysics parser sees them.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+use serde_json::{Value, json};
+
+use super::{
+    CheckRow, ConformanceError, ExpLink, ExpObject, Rows, SceneFacts, aabb_of, alignment, close,
+    num, request_or_row,
+};
+use crate::assets::JointKind;
+use crate::export::paths;
+use crate::export::view::Hold;
+use crate::physics::Bridge;
+
+pub(super) fn check_usd(
+    bridge: &mut Bridge,
+    dir: &Path,
+    exp: &[ExpObject],
+    all: &mut Vec<CheckRow>,
+) -> Result<Option<(SceneFacts, Vec<Value>)>, ConformanceError> {
+    let mut rows = Rows {
+        format: "usd",
+        rows: all,
+    };
+    let file = dir.join(paths::USD_FILE);
+    if !file.is_file() {
+        rows.fail(
+            "loads",
+            "scene.usda",
+            format!("{} is missing", file.display()),
+        );
+        return Ok(None);
+    }
+    let static_prims: Vec<&str> = exp
+        .iter()
+        .filter(|o| o.hold == Hold::Static)
+        .flat_map(|o| o.links.iter().map(|l| l.usd_body.as_str()))
+        .collect();
+    let args = json!({"usd": file, "static_prims": static_prims});
+    let Some(r) = request_or_row(bridge, "usd_check", args, &mut rows, "loads")? else {
+        return Ok(None);
+    };
+    let findings = stage_rows(&mut rows, &r);
+    let bodies = r["bodies"].as_object().cloned().unwrap_or_default();
+    let (objects, mass) = body_rows(&mut rows, exp, &r, &bodies);
+    let colliders = collider_rows(&mut rows, exp, &r, &bodies);
+    let movable = joint_rows(&mut rows, exp, &r);
+    articulation_rows(&mut rows, exp, &r, &bodies);
+    alignment(&mut rows, exp, |l| {
+        if let Some(b) = bodies.get(&l.usd_body) {
+            (aabb_of(&b["collision_aabb"]), aabb_of(&b["visual_aabb"]))
+        } else {
+            // Static geometry is grouped per link prim (`static_prims`).
+            let s = &r["static"][l.usd_body.as_str()];
+            (aabb_of(&s["collision_aabb"]), aabb_of(&s["visual_aabb"]))
+        }
+    });
+    Ok(Some((
+        SceneFacts {
+            objects,
+            mass_kg: mass,
+            joints: movable,
+            colliders,
+        },
+        findings,
+    )))
+}
+
+/// Stage metadata, composition errors and validator findings; returns the findings.
+fn stage_rows(rows: &mut Rows<'_>, r: &Value) -> Vec<Value> {
+    let md = &r["metadata"];
+    let mut problems = Vec::new();
+    if num(&md["meters_per_unit"]) != Some(1.0) {
+        problems.push(format!("metersPerUnit {}", md["meters_per_unit"]));
+    }
+    if num(&md["kilograms_per_unit"]) != Some(1.0) {
+        problems.push(format!("kilogramsPerUnit {}", md["kilograms_per_unit"]));
+    }
+    if md["up_axis"] != "Z" {
+        problems.push(format!("upAxis {}", md["up_axis"]));
+    }
+    if md["default_prim"] != "/World" {
+        problems.push(format!("defaultPrim {}", md["default_prim"]));
+    }
+    if r["physics_scenes"].as_u64() != Some(1) {
+        problems.push(format!("{} PhysicsScene prims", r["physics_scenes"]));
+    }
+    for e in r["composition_errors"].as_array().into_iter().flatten() {
+        problems.push(format!("composition: {e}"));
+    }
+    rows.add(
+        "stage: metres, kg, Z up, /World, one PhysicsScene",
+        "metersPerUnit 1, kilogramsPerUnit 1, upAxis Z".into(),
+        format!(
+            "usd-core {} opened in {:.2} s",
+            r["usd"].as_str().unwrap_or("?"),
+            num(&r["open_seconds"]).unwrap_or(0.0)
+        ),
+        problems,
+    );
+
+    let findings: Vec<Value> = r["findings"].as_array().cloned().unwrap_or_default();
+    let errors: Vec<String> = findings
+        .iter()
+        .filter(|f| f["severity"].as_str().is_some_and(|s| s.contains("Error")))
+        .map(|f| {
+            format!(
+                "{}: {}",
+                f["validator"].as_str().unwrap_or("?"),
+                f["message"].as_str().unwrap_or("")
+            )
+        })
+        .collect();
+    rows.add(
+        "UsdValidation (all validators incl. UsdPhysics)",
+        "no errors".into(),
+        format!("{} findings, 0 errors", findings.len()),
+        errors,
+    );
+
+    findings
+}
+
+/// Rigid bodies: one per link of every non-static object, with mass and a collider;
+/// returns (objects present, total mass).
+fn body_rows(
+    rows: &mut Rows<'_>,
+    exp: &[ExpObject],
+    r: &Value,
+    bodies: &serde_json::Map<String, Value>,
+) -> (usize, f64) {
+    let mut problems = Vec::new();
+    let mut expected_bodies = BTreeSet::new();
+    let mut mass = 0.0;
+    let mut objects = 0;
+    for o in exp {
+        let mut present = true;
+        if o.hold == Hold::Static {
+            for l in o.links.iter().filter(|l| l.pieces > 0) {
+                if r["static"][l.usd_body.as_str()].is_null() {
+                    problems.push(format!("{} has no colliders", l.usd_body));
+                    present = false;
+                }
+            }
+        } else {
+            let mut m = 0.0;
+            for l in &o.links {
+                expected_bodies.insert(l.usd_body.clone());
+                match bodies.get(&l.usd_body) {
+                    None => {
+                        problems.push(format!("{} is not a rigid body", l.usd_body));
+                        present = false;
+                    }
+                    Some(b) => {
+                        let got = num(&b["mass"]);
+                        match got {
+                            Some(g) if close(g, l.mass, 1e-6, 1e-9) => {}
+                            _ => problems
+                                .push(format!("{}: mass {:?}, scene {}", l.usd_body, got, l.mass)),
+                        }
+                        m += got.unwrap_or(0.0);
+                        if b["colliders"].as_u64().unwrap_or(0) == 0 {
+                            problems.push(format!("{} has no collider", l.usd_body));
+                        }
+                        let kinematic = b["kinematic"].as_bool().unwrap_or(false);
+                        let want = o.hold == Hold::Welded && !o.articulated;
+                        if kinematic != want {
+                            problems.push(format!("{}: kinematic {kinematic}", l.usd_body));
+                        }
+                    }
+                }
+            }
+            mass += m;
+        }
+        if present {
+            objects += 1;
+        }
+    }
+    for b in bodies.keys() {
+        if !expected_bodies.contains(b) {
+            problems.push(format!("unexpected rigid body {b}"));
+        }
+    }
+    let total: f64 = exp.iter().map(|o| o.mass).sum();
+    rows.add(
+        "rigid bodies with mass and colliders",
+        format!("{} bodies, {total:.4} kg", expected_bodies.len()),
+        format!("{} bodies, {mass:.4} kg", bodies.len()),
+        problems,
+    );
+
+    (objects, mass)
+}
+
+/// Colliders: one convexHull mesh per piece, each bound to a physics material; returns the
+/// collider count.
+fn collider_rows(
+    rows: &mut Rows<'_>,
+    exp: &[ExpObject],
+    r: &Value,
+    bodies: &serde_json::Map<String, Value>,
+) -> usize {
+    let mut problems = Vec::new();
+    let mut colliders = 0;
+    for o in exp {
+        if o.hold == Hold::Static {
+            for l in &o.links {
+                let got = r["static"][l.usd_body.as_str()]["colliders"]
+                    .as_u64()
+                    .unwrap_or(0) as usize;
+                colliders += got;
+                if got != l.pieces {
+                    problems.push(format!(
+                        "{}: {got} colliders, {} pieces",
+                        l.usd_body, l.pieces
+                    ));
+                }
+            }
+            continue;
+        }
+        for l in &o.links {
+            let got = bodies
+                .get(&l.usd_body)
+                .and_then(|b| b["colliders"].as_u64())
+                .unwrap_or(0) as usize;
+            colliders += got;
+            if got != l.pieces {
+                problems.push(format!(
+                    "{}: {got} colliders, {} pieces",
+                    l.usd_body, l.pieces
+                ));
+            }
+        }
+    }
+    let pieces: usize = exp.iter().flat_map(|o| &o.links).map(|l| l.pieces).sum();
+    let approx = r["approximations"].as_object().cloned().unwrap_or_default();
+    for (k, n) in &approx {
+        if k != "convexHull" {
+            problems.push(format!("{n} colliders with approximation {k}"));
+        }
+    }
+    if r["colliders_without_material"].as_u64().unwrap_or(1) != 0 {
+        problems.push(format!(
+            "{} colliders without a physics material",
+            r["colliders_without_material"]
+        ));
+    }
+    rows.add(
+        "convexHull collider per piece, friction bound",
+        format!("{pieces} pieces"),
+        format!("{colliders} colliders"),
+        problems,
+    );
+
+    colliders
+}
+
+/// Joints: targets resolve, limits in degrees / metres, world axis, initial position, welds;
+/// returns the number of revolute and prismatic joints.
+fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], r: &Value) -> usize {
+    let joints: BTreeMap<String, &Value> = r["joints"]
+        .as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|j| Some((j["path"].as_str()?.to_string(), j)))
+                .collect()
+        })
+        .unwrap_or_default();
+    let mut problems = Vec::new();
+    let mut movable = 0;
+    for j in joints.values() {
+        if !j["body0_ok"].as_bool().unwrap_or(false) || !j["body1_ok"].as_bool().unwrap_or(false) {
+            problems.push(format!(
+                "{}: body0 {} / body1 {} do not resolve to rigid bodies",
+                j["path"], j["body0"], j["body1"]
+            ));
+        }
+        if num(&j["frame_gap_m"]).is_none_or(|g| g > 1e-5) {
+            problems.push(format!(
+                "{}: joint frames {} m apart",
+                j["path"], j["frame_gap_m"]
+            ));
+        }
+        if matches!(j["type"].as_str(), Some("revolute" | "prismatic")) {
+            movable += 1;
+        }
+    }
+    for o in exp {
+        for e in &o.joints {
+            let Some(g) = joints.get(&e.usd_path) else {
+                problems.push(format!("joint {} missing", e.usd_path));
+                continue;
+            };
+            let (want, lo, hi, q, tol) = match e.kind {
+                JointKind::Revolute => (
+                    "revolute",
+                    e.lower.to_degrees(),
+                    e.upper.to_degrees(),
+                    e.q.to_degrees(),
+                    1e-3,
+                ),
+                JointKind::Prismatic => ("prismatic", e.lower, e.upper, e.q, 1e-6),
+            };
+            if g["type"] != want {
+                problems.push(format!("{}: type {}, want {want}", e.usd_path, g["type"]));
+            }
+            let glo = num(&g["lower"]).unwrap_or(f64::NAN);
+            let ghi = num(&g["upper"]).unwrap_or(f64::NAN);
+            if g["limit_enabled"] != true
+                || !close(glo, lo, 1e-6, tol)
+                || !close(ghi, hi, 1e-6, tol)
+            {
+                problems.push(format!(
+                    "{}: limits [{glo}, {ghi}], scene [{lo}, {hi}]",
+                    e.usd_path
+                ));
+            }
+            if glo.partial_cmp(&ghi).is_none_or(|o| o.is_gt())
+                || (e.kind == JointKind::Revolute && (glo < -360.0 || ghi > 360.0))
+            {
+                problems.push(format!(
+                    "{}: limits [{glo}, {ghi}] out of range",
+                    e.usd_path
+                ));
+            }
+            let axis = [
+                num(&g["axis_world"][0]).unwrap_or(0.0),
+                num(&g["axis_world"][1]).unwrap_or(0.0),
+                num(&g["axis_world"][2]).unwrap_or(0.0),
+            ];
+            let dot: f64 = (0..3).map(|k| axis[k] * e.axis_world[k]).sum();
+            if dot < 1.0 - 1e-5 {
+                problems.push(format!(
+                    "{}: world axis {axis:?}, scene {:?}",
+                    e.usd_path, e.axis_world
+                ));
+            }
+            let pos = num(&g["position_measured"]).unwrap_or(f64::NAN);
+            if !close(pos, q, 0.0, tol.max(1e-4))
+                || num(&g["off_axis_rad"]).is_none_or(|a| a > 1e-4)
+            {
+                problems.push(format!(
+                    "{}: bodies sit at joint position {pos}, scene {q}",
+                    e.usd_path
+                ));
+            }
+        }
+        if o.articulated && o.hold == Hold::Welded {
+            let weld = format!("/World/{}/world_weld", o.name);
+            match joints.get(&weld) {
+                Some(g) if g["type"] == "fixed" => {}
+                _ => problems.push(format!("{weld}: no fixed joint to the world")),
+            }
+        }
+    }
+    let n_joints: usize = exp.iter().map(|o| o.joints.len()).sum();
+    if movable != n_joints {
+        problems.push(format!(
+            "{movable} revolute/prismatic joints, scene {n_joints}"
+        ));
+    }
+    rows.add(
+        "joints: targets resolve, limits (deg / m), axis sign, initial position",
+        format!("{n_joints} joints"),
+        format!("{movable} joints match"),
+        problems,
+    );
+
+    movable
+}
+
+/// Articulation roots where the UsdPhysics spec wants them, self-collision filtered.
+fn articulation_rows(
+    rows: &mut Rows<'_>,
+    exp: &[ExpObject],
+    r: &Value,
+    bodies: &serde_json::Map<String, Value>,
+) {
+    let arts: Vec<&Value> = r["articulations"]
+        .as_array()
+        .map(|a| a.iter().collect())
+        .unwrap_or_default();
+    let mut problems = Vec::new();
+    let want_arts = exp.iter().filter(|o| o.articulated).count();
+    if arts.len() != want_arts {
+        problems.push(format!("{} articulations, scene {want_arts}", arts.len()));
+    }
+    for o in exp.iter().filter(|o| o.articulated) {
+        let root = match o.hold {
+            Hold::Free => o
+                .links
+                .first()
+                .map(|l| l.usd_body.clone())
+                .unwrap_or_default(),
+            _ => format!("/World/{}", o.name),
+        };
+        if !arts.iter().any(|a| a["path"] == root.as_str()) {
+            problems.push(format!("no articulation root at {root}"));
+        }
+        // Every pair of links of the object is filtered.
+        for (i, a) in o.links.iter().enumerate() {
+            for b in &o.links[i + 1..] {
+                let filtered = |x: &ExpLink, y: &ExpLink| {
+                    bodies
+                        .get(&x.usd_body)
+                        .and_then(|v| v["filtered"].as_array())
+                        .is_some_and(|f| f.iter().any(|p| p == y.usd_body.as_str()))
+                };
+                if !filtered(a, b) && !filtered(b, a) {
+                    problems.push(format!("{} / {} may collide", a.usd_body, b.usd_body));
+                }
+            }
+        }
+    }
+    rows.add(
+        "articulation roots, self-collision filtered",
+        format!("{want_arts} articulations"),
+        format!("{} articulations", arts.len()),
+        problems,
+    );
+}
