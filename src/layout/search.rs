@@ -1,0 +1,674 @@
+//! Placement search: axis-aligned rectangles edge to edge, no overlaps, every room next to a
+//! room it may be entered from, required pairs sharing a wall long enough for a door.
+//!
+//! Rooms are placed one at a time (anchors first: the hub or the entrance, then rooms whose
+//! parents are placed, larger first; an en-suite right after its bedroom). A new room attaches
+//! along an edge of a placed room at 11 evenly spaced positions (plus the two flush alignments
+//! and, when re-laying out, the position nearest to where the room was), in both orientations.
+//! Candidates are ranked by a local score (adjacency bonus, distance from the centroid, contact
+//! length, nearness to the previous position). The search is a limited-discrepancy
+//! backtracking over that ranking with a node budget and a wall-clock timeout: it is anytime
+//! and keeps the complete layout with the best global score (compactness, preferred
+//! neighbours, daylight, entrance on the outside, stability exp(-d/2) against the previous
+//! layout). When no layout satisfies the constraints, a relaxed pass only asks rooms to touch.
+//!
+//! Rectangles here are *cells*: bounded by wall centre lines, so neighbours share an edge and
+//! the clear floor is the cell shrunk by half a wall thickness.
+
+use std::collections::BTreeMap;
+use std::time::{Duration, Instant};
+
+use serde::{Deserialize, Serialize};
+
+use super::knowledge::Role;
+use super::spec::{HouseSpec, Link};
+
+/// Positions tried along each edge of a placed room.
+pub const POSITIONS_PER_EDGE: usize = 11;
+/// Shortest shared wall (centre line) that takes a door, metres.
+pub const MIN_SHARED: f64 = 1.2;
+const EPS: f64 = 1e-6;
+
+/// An axis-aligned rectangle, metres.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+pub struct Rect {
+    /// Low x.
+    pub x0: f64,
+    /// Low y.
+    pub y0: f64,
+    /// High x.
+    pub x1: f64,
+    /// High y.
+    pub y1: f64,
+}
+
+impl Rect {
+    /// A rectangle from its low corner and size.
+    pub fn at(x0: f64, y0: f64, w: f64, d: f64) -> Rect {
+        Rect {
+            x0,
+            y0,
+            x1: x0 + w,
+            y1: y0 + d,
+        }
+    }
+
+    /// Width along x.
+    pub fn w(&self) -> f64 {
+        self.x1 - self.x0
+    }
+
+    /// Depth along y.
+    pub fn d(&self) -> f64 {
+        self.y1 - self.y0
+    }
+
+    /// Area.
+    pub fn area(&self) -> f64 {
+        self.w() * self.d()
+    }
+
+    /// Centre.
+    pub fn center(&self) -> [f64; 2] {
+        [(self.x0 + self.x1) / 2.0, (self.y0 + self.y1) / 2.0]
+    }
+
+    /// Whether the interiors overlap.
+    pub fn overlaps(&self, o: &Rect) -> bool {
+        self.x0 < o.x1 - EPS && o.x0 < self.x1 - EPS && self.y0 < o.y1 - EPS && o.y0 < self.y1 - EPS
+    }
+
+    /// Length of the boundary the two rectangles share (0 when they do not touch along an
+    /// edge).
+    pub fn shared(&self, o: &Rect) -> f64 {
+        let ox = (self.x1.min(o.x1) - self.x0.max(o.x0)).max(0.0);
+        let oy = (self.y1.min(o.y1) - self.y0.max(o.y0)).max(0.0);
+        let vertical = (self.x1 - o.x0).abs() < EPS || (o.x1 - self.x0).abs() < EPS;
+        let horizontal = (self.y1 - o.y0).abs() < EPS || (o.y1 - self.y0).abs() < EPS;
+        let mut s = 0.0;
+        if vertical {
+            s += oy;
+        }
+        if horizontal {
+            s += ox;
+        }
+        s
+    }
+
+    /// Bounding box of two rectangles.
+    pub fn union(&self, o: &Rect) -> Rect {
+        Rect {
+            x0: self.x0.min(o.x0),
+            y0: self.y0.min(o.y0),
+            x1: self.x1.max(o.x1),
+            y1: self.y1.max(o.y1),
+        }
+    }
+
+    /// The rectangle moved by `(dx, dy)`.
+    pub fn shifted(&self, dx: f64, dy: f64) -> Rect {
+        Rect {
+            x0: self.x0 + dx,
+            y0: self.y0 + dy,
+            x1: self.x1 + dx,
+            y1: self.y1 + dy,
+        }
+    }
+}
+
+/// Cells of the rooms by id.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Placement {
+    /// Room id -> cell (wall centre lines).
+    pub cells: BTreeMap<String, Rect>,
+}
+
+impl Placement {
+    /// Bounding box of every cell.
+    pub fn bounds(&self) -> Option<Rect> {
+        self.cells.values().copied().reduce(|a, b| a.union(&b))
+    }
+
+    /// Total cell area over bounding-box area (1 for a perfect rectangle).
+    pub fn compactness(&self) -> f64 {
+        match self.bounds() {
+            Some(b) if b.area() > 0.0 => self.cells.values().map(Rect::area).sum::<f64>() / b.area(),
+            _ => 0.0,
+        }
+    }
+
+    /// Length of the room's boundary not shared with another room, metres.
+    pub fn exterior_length(&self, id: &str) -> f64 {
+        let Some(r) = self.cells.get(id) else {
+            return 0.0;
+        };
+        let shared: f64 = self
+            .cells
+            .iter()
+            .filter(|(k, _)| k.as_str() != id)
+            .map(|(_, o)| r.shared(o))
+            .sum();
+        (2.0 * (r.w() + r.d()) - shared).max(0.0)
+    }
+
+    /// Shared boundary length of two rooms, metres.
+    pub fn shared(&self, a: &str, b: &str) -> f64 {
+        match (self.cells.get(a), self.cells.get(b)) {
+            (Some(x), Some(y)) => x.shared(y),
+            _ => 0.0,
+        }
+    }
+
+    /// Mean distance the centres of the rooms in both placements moved, metres.
+    pub fn mean_displacement(&self, other: &Placement, except: &[&str]) -> f64 {
+        let moved: Vec<f64> = self
+            .cells
+            .iter()
+            .filter(|(k, _)| !except.contains(&k.as_str()))
+            .filter_map(|(k, r)| {
+                other.cells.get(k).map(|o| {
+                    let (a, b) = (r.center(), o.center());
+                    (a[0] - b[0]).hypot(a[1] - b[1])
+                })
+            })
+            .collect();
+        if moved.is_empty() {
+            0.0
+        } else {
+            moved.iter().sum::<f64>() / moved.len() as f64
+        }
+    }
+}
+
+/// Search settings.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct SearchConfig {
+    /// Wall thickness, metres (cells are clear size plus one thickness).
+    pub wall_thickness: f64,
+    /// Most candidate expansions per pass (keeps the result independent of machine speed).
+    pub node_budget: usize,
+    /// Wall-clock limit, seconds; the best layout found so far is returned when it passes.
+    pub timeout_s: f64,
+    /// Children tried per node, best first.
+    pub branching: usize,
+}
+
+impl Default for SearchConfig {
+    fn default() -> Self {
+        SearchConfig {
+            wall_thickness: super::WALL_THICKNESS,
+            node_budget: 1500,
+            timeout_s: 20.0,
+            branching: 4,
+        }
+    }
+}
+
+/// How the search went.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+pub struct SearchStats {
+    /// Candidate expansions.
+    pub nodes: usize,
+    /// Complete layouts scored.
+    pub leaves: usize,
+    /// Wall time, seconds.
+    pub seconds: f64,
+    /// The wall-clock limit cut the search short.
+    pub timed_out: bool,
+    /// No layout met every constraint; rooms were only required to touch.
+    pub relaxed: bool,
+    /// Global score of the kept layout.
+    pub score: f64,
+    /// Compactness of the kept layout.
+    pub compactness: f64,
+}
+
+/// Cell size `[x, y]` of a room for orientation `rot` (false: long side along x).
+fn cell_size(spec: &HouseSpec, i: usize, rot: bool, t: f64) -> [f64; 2] {
+    let s = spec.rooms[i].size;
+    if rot {
+        [s[1] + t, s[0] + t]
+    } else {
+        [s[0] + t, s[1] + t]
+    }
+}
+
+/// Placement order: the anchor (hub, else entrance), then repeatedly the room with a placed
+/// parent, passable rooms first, larger first; en-suites right after their bedroom.
+pub fn order(spec: &HouseSpec) -> Vec<usize> {
+    let n = spec.rooms.len();
+    let rank = |r: Role| match r {
+        Role::Hub => 0,
+        Role::Entry => 1,
+        Role::Public => 2,
+        Role::Private => 3,
+        Role::Service => 4,
+        Role::Wet => 5,
+    };
+    let anchor = spec
+        .hub()
+        .and_then(|h| spec.index(&h.id))
+        .or_else(|| spec.index(&spec.entrance))
+        .unwrap_or(0);
+    let mut out = vec![anchor];
+    let mut placed = vec![false; n];
+    if n == 0 {
+        return Vec::new();
+    }
+    placed[anchor] = true;
+    while out.len() < n {
+        let ready = |i: usize| {
+            let r = &spec.rooms[i];
+            r.parents.is_empty()
+                || r.parents
+                    .iter()
+                    .any(|p| spec.index(p).is_some_and(|j| placed[j]))
+        };
+        let pick = (0..n)
+            .filter(|&i| !placed[i] && spec.rooms[i].owner.is_none())
+            .filter(|&i| ready(i))
+            .min_by(|&a, &b| {
+                let (ra, rb) = (&spec.rooms[a], &spec.rooms[b]);
+                rank(ra.role)
+                    .cmp(&rank(rb.role))
+                    .then(rb.area().total_cmp(&ra.area()))
+                    .then(a.cmp(&b))
+            })
+            .or_else(|| (0..n).find(|&i| !placed[i] && ready(i)))
+            .or_else(|| (0..n).find(|&i| !placed[i]));
+        let Some(i) = pick else { break };
+        placed[i] = true;
+        out.push(i);
+        // En-suites follow their bedroom so they can share its free walls.
+        let id = spec.rooms[i].id.clone();
+        for j in 0..n {
+            if !placed[j] && spec.rooms[j].owner.as_deref() == Some(id.as_str()) {
+                placed[j] = true;
+                out.push(j);
+            }
+        }
+    }
+    out
+}
+
+struct Search<'a> {
+    spec: &'a HouseSpec,
+    order: Vec<usize>,
+    cfg: SearchConfig,
+    previous: Option<&'a Placement>,
+    relaxed: bool,
+    nodes: usize,
+    leaves: usize,
+    start: Instant,
+    timed_out: bool,
+    best: Option<(f64, Vec<Rect>)>,
+    /// Cell of each room in order position, as placed so far.
+    placed: Vec<Rect>,
+}
+
+impl Search<'_> {
+    fn out_of_budget(&mut self) -> bool {
+        if self.nodes >= self.cfg.node_budget {
+            return true;
+        }
+        if self.start.elapsed() > Duration::from_secs_f64(self.cfg.timeout_s) {
+            self.timed_out = true;
+            return true;
+        }
+        false
+    }
+
+    fn prev_cell(&self, room: usize) -> Option<Rect> {
+        self.previous
+            .and_then(|p| p.cells.get(&self.spec.rooms[room].id).copied())
+    }
+
+    /// Whether `cell` for the room at order position `k` meets the constraints against the
+    /// rooms placed so far.
+    fn admissible(&self, k: usize, cell: &Rect) -> bool {
+        if self.placed.iter().any(|p| p.overlaps(cell)) {
+            return false;
+        }
+        if !self.placed.iter().any(|p| p.shared(cell) > EPS) && !self.placed.is_empty() {
+            return false;
+        }
+        if self.relaxed {
+            return true;
+        }
+        let room = &self.spec.rooms[self.order[k]];
+        let cell_of = |id: &str| -> Option<Rect> {
+            let j = self.spec.index(id)?;
+            let pos = self.order.iter().position(|&o| o == j)?;
+            (pos < k).then(|| self.placed[pos])
+        };
+        // Required pairs with rooms already placed.
+        for p in self.spec.adjacency.iter().filter(|p| p.required()) {
+            let other = if p.a == room.id {
+                &p.b
+            } else if p.b == room.id {
+                &p.a
+            } else {
+                continue;
+            };
+            if let Some(o) = cell_of(other)
+                && o.shared(cell) < MIN_SHARED - EPS
+            {
+                return false;
+            }
+        }
+        // At least one placed parent with a door-long wall.
+        let placed_parents: Vec<Rect> = room.parents.iter().filter_map(|p| cell_of(p)).collect();
+        if !placed_parents.is_empty()
+            && !placed_parents
+                .iter()
+                .any(|o| o.shared(cell) >= MIN_SHARED - EPS)
+        {
+            return false;
+        }
+        true
+    }
+
+    fn local_score(&self, k: usize, cell: &Rect, rot: bool) -> f64 {
+        let room = &self.spec.rooms[self.order[k]];
+        let mut score = 1.0;
+        let mut contact = 0.0;
+        for (pos, p) in self.placed.iter().enumerate() {
+            let shared = p.shared(cell);
+            contact += shared;
+            if shared < MIN_SHARED - EPS {
+                continue;
+            }
+            let other = &self.spec.rooms[self.order[pos]];
+            if room.parents.contains(&other.id) || other.parents.contains(&room.id) {
+                score += 2.0;
+            }
+            if let Some(pair) = self.spec.pair(&room.id, &other.id) {
+                score += if pair.link == Link::Preferred { 1.0 } else { 2.0 };
+            }
+        }
+        // Compact: close to the centroid, much contact.
+        let (mut cx, mut cy, mut a) = (0.0, 0.0, 0.0);
+        for p in &self.placed {
+            let c = p.center();
+            cx += c[0] * p.area();
+            cy += c[1] * p.area();
+            a += p.area();
+        }
+        if a > 0.0 {
+            let c = cell.center();
+            score -= 0.15 * (c[0] - cx / a).hypot(c[1] - cy / a);
+        }
+        score += 1.5 * contact / (2.0 * (cell.w() + cell.d()));
+        if let Some(prev) = self.prev_cell(self.order[k]) {
+            let (c, pc) = (cell.center(), prev.center());
+            score += 4.0 * (-(c[0] - pc[0]).hypot(c[1] - pc[1]) / 2.0).exp();
+            let prev_rot = (prev.w() < prev.d()) != (room.size[0] < room.size[1]);
+            if prev_rot == rot {
+                score += 0.5;
+            }
+        }
+        score
+    }
+
+    /// Ranked admissible cells for the room at order position `k`.
+    fn candidates(&self, k: usize) -> Vec<(f64, Rect)> {
+        let i = self.order[k];
+        let t = self.cfg.wall_thickness;
+        let prev = self.prev_cell(i);
+        let mut seen: Vec<Rect> = Vec::new();
+        let mut out: Vec<(f64, Rect)> = Vec::new();
+        let square = (self.spec.rooms[i].size[0] - self.spec.rooms[i].size[1]).abs() < EPS;
+        let rots: &[bool] = if square { &[false] } else { &[false, true] };
+        for &rot in rots {
+            let [w, d] = cell_size(self.spec, i, rot, t);
+            let mut push = |cell: Rect, out: &mut Vec<(f64, Rect)>, seen: &mut Vec<Rect>| {
+                let key = |r: &Rect| [r.x0, r.y0, r.x1, r.y1].map(|v| (v * 1e4).round() as i64);
+                if seen.iter().any(|s| key(s) == key(&cell)) {
+                    return;
+                }
+                seen.push(cell);
+                if self.admissible(k, &cell) {
+                    out.push((self.local_score(k, &cell, rot), cell));
+                }
+            };
+            if self.placed.is_empty() {
+                let origin = prev.map(|p| [p.x0, p.y0]).unwrap_or([0.0, 0.0]);
+                push(Rect::at(origin[0], origin[1], w, d), &mut out, &mut seen);
+                continue;
+            }
+            for p in &self.placed {
+                // Along the north and south edges x varies; along east and west y varies.
+                let along = |lo: f64, hi: f64, size: f64, prev_lo: Option<f64>| -> Vec<f64> {
+                    let m = MIN_SHARED.min(hi - lo).min(size);
+                    let (a, b) = (lo - size + m, hi - m);
+                    let mut v: Vec<f64> = (0..POSITIONS_PER_EDGE)
+                        .map(|j| {
+                            if POSITIONS_PER_EDGE == 1 || b <= a {
+                                a
+                            } else {
+                                a + (b - a) * j as f64 / (POSITIONS_PER_EDGE - 1) as f64
+                            }
+                        })
+                        .collect();
+                    v.push(lo);
+                    v.push(hi - size);
+                    if let Some(pl) = prev_lo {
+                        v.push(pl.clamp(a.min(b), b.max(a)));
+                    }
+                    v
+                };
+                for x in along(p.x0, p.x1, w, prev.map(|r| r.x0)) {
+                    push(Rect::at(x, p.y1, w, d), &mut out, &mut seen);
+                    push(Rect::at(x, p.y0 - d, w, d), &mut out, &mut seen);
+                }
+                for y in along(p.y0, p.y1, d, prev.map(|r| r.y0)) {
+                    push(Rect::at(p.x1, y, w, d), &mut out, &mut seen);
+                    push(Rect::at(p.x0 - w, y, w, d), &mut out, &mut seen);
+                }
+            }
+        }
+        out.sort_by(|a, b| {
+            b.0.total_cmp(&a.0)
+                .then(a.1.x0.total_cmp(&b.1.x0))
+                .then(a.1.y0.total_cmp(&b.1.y0))
+        });
+        out
+    }
+
+    fn global_score(&self) -> f64 {
+        let mut placement = Placement::default();
+        for (pos, cell) in self.placed.iter().enumerate() {
+            placement
+                .cells
+                .insert(self.spec.rooms[self.order[pos]].id.clone(), *cell);
+        }
+        global_score(self.spec, &placement, self.previous)
+    }
+
+    /// Limited-discrepancy descent: at most `disc` non-best choices on the way down.
+    fn descend(&mut self, k: usize, disc: usize) {
+        if k == self.order.len() {
+            self.leaves += 1;
+            let s = self.global_score();
+            if self.best.as_ref().is_none_or(|(b, _)| s > *b + 1e-9) {
+                self.best = Some((s, self.placed.clone()));
+            }
+            return;
+        }
+        if self.out_of_budget() {
+            return;
+        }
+        self.nodes += 1;
+        let cands = self.candidates(k);
+        for (j, (_, cell)) in cands.into_iter().take(self.cfg.branching).enumerate() {
+            if j > 0 && disc == 0 {
+                break;
+            }
+            self.placed.push(cell);
+            self.descend(k + 1, if j == 0 { disc } else { disc - 1 });
+            self.placed.pop();
+            if self.out_of_budget() {
+                return;
+            }
+        }
+    }
+}
+
+/// Global score of a complete placement: compactness, preferred neighbours, daylight for rooms
+/// that want windows, the entrance on the outside, and stability against `previous`.
+pub fn global_score(spec: &HouseSpec, placement: &Placement, previous: Option<&Placement>) -> f64 {
+    let mut score = 10.0 * placement.compactness();
+    let pairs: Vec<_> = spec.adjacency.iter().collect();
+    if !pairs.is_empty() {
+        let ok = pairs
+            .iter()
+            .filter(|p| placement.shared(&p.a, &p.b) >= MIN_SHARED - EPS)
+            .count();
+        score += 2.0 * ok as f64 / pairs.len() as f64;
+    }
+    let want: Vec<_> = spec.rooms.iter().filter(|r| r.windows).collect();
+    if !want.is_empty() {
+        let lit = want
+            .iter()
+            .filter(|r| placement.exterior_length(&r.id) >= MIN_SHARED)
+            .count();
+        score += 3.0 * lit as f64 / want.len() as f64;
+    }
+    if placement.exterior_length(&spec.entrance) < MIN_SHARED {
+        score -= 5.0;
+    }
+    if let Some(b) = placement.bounds() {
+        let aspect = b.w().max(b.d()) / b.w().min(b.d()).max(EPS);
+        score -= 0.5 * (aspect - 2.0).max(0.0);
+    }
+    if let Some(prev) = previous {
+        let common: Vec<f64> = placement
+            .cells
+            .iter()
+            .filter_map(|(k, r)| {
+                prev.cells.get(k).map(|p| {
+                    let (a, b) = (r.center(), p.center());
+                    (-(a[0] - b[0]).hypot(a[1] - b[1]) / 2.0).exp()
+                })
+            })
+            .collect();
+        if !common.is_empty() {
+            score += 12.0 * common.iter().sum::<f64>() / common.len() as f64;
+        }
+    }
+    score
+}
+
+/// Places every room of `spec`; `previous` keeps rooms where they were (for edits).
+pub fn place(
+    spec: &HouseSpec,
+    previous: Option<&Placement>,
+    cfg: &SearchConfig,
+) -> (Placement, SearchStats) {
+    let start = Instant::now();
+    let order = order(spec);
+    let mut stats = SearchStats::default();
+    let mut result: Option<Vec<Rect>> = None;
+    for relaxed in [false, true] {
+        let mut s = Search {
+            spec,
+            order: order.clone(),
+            cfg: *cfg,
+            previous,
+            relaxed,
+            nodes: 0,
+            leaves: 0,
+            start,
+            timed_out: false,
+            best: None,
+            placed: Vec::new(),
+        };
+        // Discrepancy budgets 0, 1, 2, ...: the greedy layout first, then its neighbours.
+        for disc in 0..=order.len() {
+            s.descend(0, disc);
+            if s.out_of_budget() {
+                break;
+            }
+        }
+        stats.nodes += s.nodes;
+        stats.leaves += s.leaves;
+        stats.timed_out |= s.timed_out;
+        if let Some((score, cells)) = s.best {
+            stats.relaxed = relaxed;
+            stats.score = score;
+            result = Some(cells);
+            break;
+        }
+    }
+    let cells = result.unwrap_or_else(|| row_fallback(spec, &order, cfg.wall_thickness));
+    let mut placement = Placement::default();
+    for (pos, cell) in cells.into_iter().enumerate() {
+        placement
+            .cells
+            .insert(spec.rooms[order[pos]].id.clone(), cell);
+    }
+    if stats.leaves == 0 {
+        stats.relaxed = true;
+        stats.score = global_score(spec, &placement, previous);
+    }
+    stats.compactness = placement.compactness();
+    stats.seconds = start.elapsed().as_secs_f64();
+    (placement, stats)
+}
+
+/// Last resort when even touching layouts ran out of budget: rooms in a row along x.
+fn row_fallback(spec: &HouseSpec, order: &[usize], t: f64) -> Vec<Rect> {
+    let mut x = 0.0;
+    order
+        .iter()
+        .map(|&i| {
+            let [w, d] = cell_size(spec, i, false, t);
+            let r = Rect::at(x, 0.0, w, d);
+            x += w;
+            r
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::layout::{brief, spec};
+
+    #[test]
+    fn rect_contact() {
+        let a = Rect::at(0.0, 0.0, 4.0, 3.0);
+        let b = Rect::at(4.0, 1.0, 2.0, 4.0);
+        assert!((a.shared(&b) - 2.0).abs() < 1e-12);
+        assert!(!a.overlaps(&b));
+        assert!(a.overlaps(&Rect::at(3.9, 1.0, 2.0, 4.0)));
+        assert_eq!(a.shared(&Rect::at(4.0, 3.0, 1.0, 1.0)), 0.0, "corners only");
+    }
+
+    #[test]
+    fn places_a_flat_without_overlaps_and_with_parents_adjacent() {
+        let spec = spec::house_spec(&brief::read(
+            "A two-bedroom apartment with a master bedroom, a second bedroom, a living room, a hallway, and a bathroom.",
+        ));
+        let (p, stats) = place(&spec, None, &SearchConfig::default());
+        assert!(!stats.relaxed, "{stats:?}");
+        let ids: Vec<&String> = p.cells.keys().collect();
+        for (i, a) in ids.iter().enumerate() {
+            for b in &ids[i + 1..] {
+                assert!(!p.cells[*a].overlaps(&p.cells[*b]), "{a} overlaps {b}");
+            }
+        }
+        for r in &spec.rooms {
+            if r.parents.is_empty() {
+                continue;
+            }
+            assert!(
+                r.parents.iter().any(|q| p.shared(&r.id, q) >= MIN_SHARED - 1e-9),
+                "{} is not next to any of {:?}",
+                r.id,
+                r.parents
+            );
+        }
+        assert!(stats.compactness > 0.6, "{stats:?}");
+    }
+}
