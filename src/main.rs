@@ -42,6 +42,9 @@ enum Command {
         /// Skip loading the result in Drake before writing it.
         #[arg(long)]
         no_check: bool,
+        /// Continue a failed run of the same command after its last finished stage.
+        #[arg(long)]
+        resume: bool,
         #[command(flatten)]
         llm: LlmArgs,
     },
@@ -311,6 +314,7 @@ fn main() -> ExitCode {
             out,
             seed,
             no_check,
+            resume,
             llm,
         } => llm.choice().and_then(|backend| {
             run_generate(
@@ -321,6 +325,7 @@ fn main() -> ExitCode {
                     out,
                     drake_check: !no_check,
                     backend,
+                    resume,
                 },
             )
         }),

@@ -27,8 +27,9 @@ use crate::physics::{Bridge, BridgeError};
 use crate::prompt;
 use crate::scene::{ObjectKind, Pose, Scene, Support, sanitize_name};
 use crate::stages::SceneState;
+use crate::stages::checkpoint::{CheckpointStore, DirCheckpoints, NoCheckpoints};
 use crate::stages::plan::plan_room;
-use crate::stages::run::{Backend, StageSummary, furnish_room};
+use crate::stages::run::{Backend, StageSummary, furnish_room_resumable};
 use crate::util::fsx::{FsError, StagingDir};
 
 /// Longest prompt accepted, in characters.
@@ -69,6 +70,17 @@ pub enum PipelineError {
     /// The LLM backend could not be set up.
     #[error(transparent)]
     Llm(#[from] LlmError),
+    /// A failure after some stages finished; `--resume` continues from there.
+    #[error(
+        "{source} ({finished} finished stages were saved; run the same command with --resume to continue)"
+    )]
+    Resumable {
+        /// Stages saved.
+        finished: usize,
+        /// The failure.
+        #[source]
+        source: Box<PipelineError>,
+    },
 }
 
 /// Which agents to run.
@@ -96,6 +108,24 @@ pub struct GenerateOptions {
     pub drake_check: bool,
     /// Which agents run the stages.
     pub backend: BackendChoice,
+    /// Continue after the stages an earlier, failed run of the same request finished.
+    pub resume: bool,
+}
+
+/// Identifies a request for checkpoints: the same tool version, prompt, seed and backend.
+fn fingerprint(opts: &GenerateOptions) -> String {
+    let backend = match &opts.backend {
+        BackendChoice::Builtin => "builtin".to_string(),
+        BackendChoice::Llm(c) => format!("llm {} {}", c.base_url, c.model),
+        BackendChoice::Replay(p) => format!("replay {}", p.display()),
+    };
+    let key = format!(
+        "{}\n{}\n{}\n{backend}",
+        env!("CARGO_PKG_VERSION"),
+        opts.prompt,
+        opts.seed
+    );
+    blake3::hash(key.as_bytes()).to_hex().to_string()
 }
 
 /// Wall time per step, seconds.
@@ -219,6 +249,18 @@ pub fn build_scene(
     package_name: &str,
     backend: &Backend,
 ) -> Result<(SceneState, BuildReport), PipelineError> {
+    build_scene_with(prompt_text, seed, package_name, backend, &mut NoCheckpoints)
+}
+
+/// [`build_scene`] with stage checkpoints: finished stages found in `store` are skipped, every
+/// stage that finishes is saved.
+pub fn build_scene_with(
+    prompt_text: &str,
+    seed: u64,
+    package_name: &str,
+    backend: &Backend,
+    store: &mut dyn CheckpointStore,
+) -> Result<(SceneState, BuildReport), PipelineError> {
     validate_prompt(prompt_text)?;
     let reading = prompt::read(prompt_text);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
@@ -264,7 +306,8 @@ pub fn build_scene(
         ..BuildReport::default()
     };
     let requested = plan.requested();
-    let (state, stages) = furnish_room(state, &room_id, plan, backend, &mut report.log)?;
+    let (state, stages) =
+        furnish_room_resumable(state, &room_id, plan, backend, &mut report.log, store)?;
     report.stages = stages;
     report.coverage = requested
         .into_iter()
@@ -326,31 +369,35 @@ fn make_backend(
     })
 }
 
-/// Runs the whole pipeline and writes the scene directory.
-pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError> {
-    validate_prompt(&opts.prompt)?;
-    let mut timings = Timings::new();
-    let t_total = Instant::now();
-    // Fails before any work when the output cannot be written.
-    let staging = StagingDir::new(&opts.out)?;
-    let package = package_name_for(staging.target());
+type Finished = (
+    PathBuf,
+    SceneState,
+    BuildReport,
+    Vec<collision::PairPenetration>,
+    Option<CheckSummary>,
+);
 
-    let (backend, transport) = make_backend(&opts.backend, staging.path())?;
-    let (mut state, report) = timed(&mut timings, "stages", || {
-        build_scene(&opts.prompt, opts.seed, &package, &backend)
-    })?;
-    if let Some(t) = &transport
+/// Writes a built scene into the staging directory, checks it in Drake and commits it.
+fn finish_run(
+    opts: &GenerateOptions,
+    staging: StagingDir,
+    transport: &Option<SharedTransport>,
+    mut state: SceneState,
+    report: BuildReport,
+    timings: &mut Timings,
+) -> Result<Finished, PipelineError> {
+    if let Some(t) = transport
         && let Ok(t) = t.lock()
     {
         state.scene.llm_usage = t.usage();
     }
 
-    let rust_pairs = timed(&mut timings, "rust_collision_check", || {
+    let rust_pairs = timed(timings, "rust_collision_check", || {
         collision::posed_objects(&state.scene, &state.assets)
             .map(|objs| collision::penetrating_pairs(&objs, 1e-3))
     })?;
 
-    timed(&mut timings, "write", || -> Result<(), PipelineError> {
+    timed(timings, "write", || -> Result<(), PipelineError> {
         scene_dir::write_scene_dir(staging.path(), &state)?;
         crate::util::fsx::write_atomic(
             &staging.path().join("agent_log.jsonl"),
@@ -360,14 +407,10 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
     })?;
 
     let check = if opts.drake_check {
-        let summary = timed(
-            &mut timings,
-            "drake_check",
-            || -> Result<_, PipelineError> {
-                let mut bridge = Bridge::from_env()?;
-                check_dir(&mut bridge, staging.path(), 1e-3)
-            },
-        )?;
+        let summary = timed(timings, "drake_check", || -> Result<_, PipelineError> {
+            let mut bridge = Bridge::from_env()?;
+            check_dir(&mut bridge, staging.path(), 1e-3)
+        })?;
         if !summary.problems.is_empty() {
             return Err(PipelineError::CheckFailed(summary.problems.join("; ")));
         }
@@ -379,6 +422,44 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
     };
 
     let out = staging.commit()?;
+    Ok((out, state, report, rust_pairs, check))
+}
+
+/// Runs the whole pipeline and writes the scene directory.
+pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError> {
+    validate_prompt(&opts.prompt)?;
+    let mut timings = Timings::new();
+    let t_total = Instant::now();
+    // Fails before any work when the output cannot be written.
+    let staging = StagingDir::new(&opts.out)?;
+    let package = package_name_for(staging.target());
+
+    let (backend, transport) = make_backend(&opts.backend, staging.path())?;
+    let mut checkpoints = DirCheckpoints::open(staging.target(), &fingerprint(opts), opts.resume);
+    let built = timed(&mut timings, "stages", || {
+        build_scene_with(
+            &opts.prompt,
+            opts.seed,
+            &package,
+            &backend,
+            &mut checkpoints,
+        )
+    });
+    // Everything after the stages: a failure keeps the checkpoints for --resume.
+    let finished = built.and_then(|(state, report)| {
+        finish_run(opts, staging, &transport, state, report, &mut timings)
+    });
+    let (out, state, report, rust_pairs, check) = match finished {
+        Ok(v) => v,
+        Err(e) if checkpoints.finished().is_empty() => return Err(e),
+        Err(e) => {
+            return Err(PipelineError::Resumable {
+                finished: checkpoints.finished().len(),
+                source: Box::new(e),
+            });
+        }
+    };
+    checkpoints.clear();
     timings.insert("total".into(), t_total.elapsed().as_secs_f64());
     let mut per_kind = BTreeMap::new();
     let mut per_cat = BTreeMap::new();

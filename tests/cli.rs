@@ -269,3 +269,84 @@ fn check_fails_on_a_scene_with_penetration() {
         "pose mismatch reported"
     );
 }
+
+/// A full disk: the run fails with a clear error, the previous scene stays, nothing
+/// half-written is left. The disk is a 48 KiB tmpfs in a private mount namespace.
+#[test]
+fn full_disk_is_a_clear_error_and_loses_nothing() {
+    let root = tempfile::tempdir().unwrap();
+    let disk = root.path().join("disk");
+    std::fs::create_dir(&disk).unwrap();
+    let bin = env!("CARGO_BIN_EXE_scenesmith");
+    let script = format!(
+        "set -e; mount -t tmpfs -o size=48k tmpfs {disk}; mkdir {disk}/scene; echo old > {disk}/scene/scene.json; \
+         set +e; SCENESMITH_HOME={home} {bin} generate 'A library with four shelves full of books and a table' --out {disk}/scene --no-check; \
+         echo \"exit=$?\"; ls -a {disk}; cat {disk}/scene/scene.json",
+        disk = disk.display(),
+        home = common::home().display(),
+    );
+    let out = std::process::Command::new("unshare")
+        .args(["--user", "--map-root-user", "--mount", "sh", "-c", &script])
+        .output()
+        .expect("unshare runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stdout.contains("exit=1"),
+        "stdout:\n{stdout}\nstderr:\n{stderr}"
+    );
+    assert!(stderr.contains("No space left on device"), "{stderr}");
+    assert!(stderr.contains("left as it was"), "{stderr}");
+    // Only the previous scene remains, with its content.
+    let entries: Vec<&str> = stdout.lines().filter(|l| !l.starts_with("exit=")).collect();
+    assert_eq!(entries, vec![".", "..", "scene", "old"], "{stdout}");
+}
+
+/// A run that fails after its stages (here: the Drake bridge dies on every check) keeps
+/// checkpoints; `--resume` continues from them and gives the scene an uninterrupted run gives.
+#[test]
+fn failed_run_resumes_from_its_checkpoints() {
+    let root = tempfile::tempdir().unwrap();
+    let prompt = "A kitchen with a table, four chairs, plates and mugs, and a shelf with books";
+    let out = root.path().join("a/scene");
+    let g = scenesmith(
+        &["generate", prompt, "--out", out.to_str().unwrap()],
+        &[("SCENESMITH_BRIDGE_CRASH_ON", "collision_report")],
+    );
+    assert_eq!(g.status.code(), Some(1), "{}", text(&g));
+    let err = String::from_utf8_lossy(&g.stderr);
+    assert!(err.contains("--resume"), "{err}");
+    assert!(!out.exists());
+    let checkpoints = root.path().join("a/.scene.checkpoints");
+    assert!(checkpoints.join("progress.json").is_file());
+
+    let r = scenesmith(
+        &[
+            "generate",
+            prompt,
+            "--out",
+            out.to_str().unwrap(),
+            "--resume",
+        ],
+        &[("SCENESMITH_LOG", "info")],
+    );
+    assert!(r.status.success(), "{}", text(&r));
+    let log = String::from_utf8_lossy(&r.stderr);
+    assert!(log.contains("resumed stage kitchen_0/furniture"), "{log}");
+    assert!(
+        !checkpoints.exists(),
+        "checkpoints are removed after success"
+    );
+
+    let fresh = root.path().join("b/scene");
+    let f = scenesmith(&["generate", prompt, "--out", fresh.to_str().unwrap()], &[]);
+    assert!(f.status.success(), "{}", text(&f));
+    assert_eq!(
+        read(&out.join("scene.json")),
+        read(&fresh.join("scene.json"))
+    );
+    assert_eq!(
+        read(&out.join("agent_log.jsonl")),
+        read(&fresh.join("agent_log.jsonl"))
+    );
+}

@@ -4,6 +4,7 @@
 //! it through the same few operations (build an asset, add, move or remove an object).
 
 pub mod ceiling;
+pub mod checkpoint;
 pub mod common;
 pub mod furniture;
 pub mod furniture_builtin;

@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
+use super::checkpoint::{CheckpointStore, NoCheckpoints};
 use super::plan::{RoomPlan, SurfaceWant, Want};
 use super::{
     SceneState, StageKind, StageState, ceiling, furniture, furniture_builtin, manipuland,
@@ -53,6 +54,8 @@ pub struct StageSummary {
     pub critique: Option<Critique>,
     /// Critique rounds run.
     pub rounds: usize,
+    /// Wall time of the stage (agents and tools), seconds; not written to `scene.json`.
+    pub seconds: f64,
 }
 
 fn stage_config(kind: StageKind) -> StageConfig {
@@ -240,6 +243,7 @@ fn run_one(
         toolbox: &tools,
         brief: &text,
     };
+    let t0 = std::time::Instant::now();
     let outcome = run_stage(
         &spec,
         state,
@@ -255,6 +259,7 @@ fn run_one(
         entity,
         critique: outcome.critique.clone(),
         rounds: outcome.history.len(),
+        seconds: t0.elapsed().as_secs_f64(),
     });
     Ok(outcome.state.scene)
 }
@@ -333,23 +338,52 @@ pub fn furnish_room(
     backend: &Backend,
     log: &mut RunLog,
 ) -> Result<(SceneState, Vec<StageSummary>), AgentError> {
+    furnish_room_resumable(scene, room, plan, backend, log, &mut NoCheckpoints)
+}
+
+/// Runs every placement stage of one room, skipping stages `store` has from an earlier run
+/// and saving each stage that finishes.
+pub fn furnish_room_resumable(
+    scene: SceneState,
+    room: &str,
+    plan: RoomPlan,
+    backend: &Backend,
+    log: &mut RunLog,
+    store: &mut dyn CheckpointStore,
+) -> Result<(SceneState, Vec<StageSummary>), AgentError> {
     let plan = Arc::new(plan);
     let mut rec = Recorder {
         log,
         summaries: Vec::new(),
     };
     let mut scene = scene;
+    let mut step = |scene: SceneState,
+                    kind: StageKind,
+                    entity: Option<String>,
+                    plan: Arc<RoomPlan>,
+                    rec: &mut Recorder<'_>|
+     -> Result<SceneState, AgentError> {
+        let key = match &entity {
+            Some(e) => format!("{room}/{}/{e}", kind.as_str()),
+            None => format!("{room}/{}", kind.as_str()),
+        };
+        if let Some((saved, saved_log)) = store.load(&key) {
+            *rec.log = saved_log;
+            return Ok(saved);
+        }
+        let out = run_one(scene, kind, room, entity, plan, backend, rec)?;
+        store.save(&key, &out, rec.log);
+        Ok(out)
+    };
     for kind in [StageKind::Furniture, StageKind::Wall, StageKind::Ceiling] {
-        scene = run_one(scene, kind, room, None, plan.clone(), backend, &mut rec)?;
+        scene = step(scene, kind, None, plan.clone(), &mut rec)?;
     }
     for (entity, eplan) in entity_plans(&scene, room, &plan) {
-        scene = run_one(
+        scene = step(
             scene,
             StageKind::Manipuland,
-            room,
             Some(entity),
             Arc::new(eplan),
-            backend,
             &mut rec,
         )?;
     }
