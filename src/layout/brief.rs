@@ -67,7 +67,6 @@ pub struct HouseBrief {
 struct Tok {
     w: String,
     start: usize,
-    end: usize,
 }
 
 /// Words of `text[from..to]` as [`crate::prompt::tokenize`] splits them, with byte offsets.
@@ -85,7 +84,6 @@ fn tokens(text: &str, from: usize, to: usize) -> Vec<Tok> {
         out.push(Tok {
             w: trimmed.to_lowercase(),
             start: s + lead,
-            end: s + lead + trimmed.len(),
         });
     };
     for (i, c) in slice.char_indices() {
@@ -402,12 +400,22 @@ fn materials_in(toks: &[Tok]) -> (Option<String>, Option<String>) {
             "walls" | "wall" | "paneling" | "panelling" => &mut wall,
             _ => continue,
         };
-        for j in (i.saturating_sub(3)..i).rev() {
-            let two = if j + 1 < i {
-                format!("{} {}", toks[j].w, toks[j + 1].w)
-            } else {
-                String::new()
-            };
+        // "marble floors", "polished concrete floor"; "floors are hardwood", "walls of brick".
+        let before = (i.saturating_sub(3)..i).rev();
+        let linked = toks
+            .get(i + 1)
+            .is_some_and(|t| matches!(t.w.as_str(), "is" | "are" | "of" | "in" | "made"));
+        let after = if linked {
+            i + 2..(i + 5).min(toks.len())
+        } else {
+            0..0
+        };
+        for j in before.chain(after) {
+            let two = toks
+                .get(j + 1)
+                .filter(|_| j + 1 != i)
+                .map(|n| format!("{} {}", toks[j].w, n.w))
+                .unwrap_or_default();
             if let Some(m) = material_word(&two).or_else(|| material_word(&toks[j].w)) {
                 *target = Some(m.to_string());
                 break;
@@ -943,7 +951,7 @@ mod tests {
         assert!(en[0].text[0].contains("shower"), "{:?}", en[0].text);
         assert!(!b.rooms[beds[0]].text[0].contains("shower"));
         assert!(en[1].text[0].contains("bathtub"));
-        assert_eq!(b.rooms.len(), 13);
+        assert_eq!(b.rooms.len(), 14);
     }
 
     #[test]

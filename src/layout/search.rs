@@ -421,7 +421,7 @@ impl Search<'_> {
         let rots: &[bool] = if square { &[false] } else { &[false, true] };
         for &rot in rots {
             let [w, d] = cell_size(self.spec, i, rot, t);
-            let mut push = |cell: Rect, out: &mut Vec<(f64, Rect)>, seen: &mut Vec<Rect>| {
+            let push = |cell: Rect, out: &mut Vec<(f64, Rect)>, seen: &mut Vec<Rect>| {
                 let key = |r: &Rect| [r.x0, r.y0, r.x1, r.y1].map(|v| (v * 1e4).round() as i64);
                 if seen.iter().any(|s| key(s) == key(&cell)) {
                     return;

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::brief::{HouseBrief, RoomRequest};
 use super::connect::{self, DoorPos, DoorSpec, Side, WindowSpec, intervals};
-use super::knowledge::{self, Role, material_word, room_words};
+use super::knowledge::{self, Role, room_words};
 use super::search::{MIN_SHARED, SearchStats};
 use super::spec::{self, Adjacency, Link};
 use super::state::{LayoutState, LayoutSummary};
