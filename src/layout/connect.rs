@@ -11,7 +11,7 @@ use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
 use super::knowledge::Role;
-use super::search::{MIN_SHARED, Placement, Rect};
+use super::search::{MIN_SHARED, Outside, Placement, Rect};
 use super::spec::{HouseSpec, Link};
 
 /// Standard interior door: width, height (metres).
@@ -131,6 +131,8 @@ pub struct Interval {
     pub hi: f64,
     /// Neighbour room, `None` outside.
     pub neighbor: Option<String>,
+    /// No neighbour and facing the open outside (not an enclosed courtyard).
+    pub outside: bool,
 }
 
 impl Interval {
@@ -150,6 +152,11 @@ const EPS: f64 = 1e-6;
 /// The intervals of every side of room `id`, counter-clockwise (south, east, north, west; each
 /// side in its counter-clockwise direction).
 pub fn intervals(placement: &Placement, id: &str) -> Vec<Interval> {
+    intervals_with(placement, id, &Outside::of(placement))
+}
+
+/// [`intervals`] with the placement's outside already computed.
+pub fn intervals_with(placement: &Placement, id: &str, outside: &Outside) -> Vec<Interval> {
     let Some(r) = placement.cells.get(id) else {
         return Vec::new();
     };
@@ -193,6 +200,7 @@ pub fn intervals(placement: &Placement, id: &str) -> Vec<Interval> {
                     lo: cursor,
                     hi: a,
                     neighbor: None,
+                    outside: false,
                 });
             }
             pieces.push(Interval {
@@ -200,6 +208,7 @@ pub fn intervals(placement: &Placement, id: &str) -> Vec<Interval> {
                 lo: a.max(cursor),
                 hi: b,
                 neighbor: Some(k),
+                outside: false,
             });
             cursor = b;
         }
@@ -209,7 +218,19 @@ pub fn intervals(placement: &Placement, id: &str) -> Vec<Interval> {
                 lo: cursor,
                 hi,
                 neighbor: None,
+                outside: false,
             });
+        }
+        // Free pieces face the outside unless they face an enclosed courtyard.
+        for p in pieces.iter_mut().filter(|p| p.neighbor.is_none()) {
+            let m = (p.lo + p.hi) / 2.0;
+            let probe = match side {
+                Side::South => [m, r.y0 - 1e-3],
+                Side::North => [m, r.y1 + 1e-3],
+                Side::East => [r.x1 + 1e-3, m],
+                Side::West => [r.x0 - 1e-3, m],
+            };
+            p.outside = outside.is_open(probe);
         }
         // North and west run against the axis when walked counter-clockwise.
         if matches!(side, Side::North | Side::West) {
@@ -283,8 +304,10 @@ pub fn auto_doors(spec: &HouseSpec, placement: &Placement, seed: u64) -> Vec<Doo
     let mut doors: Vec<DoorSpec> = Vec::new();
     let mut next = 0usize;
     let mut add = |doors: &mut Vec<DoorSpec>, a: &str, b: Option<&str>, side: Option<Side>| {
+        // An exterior door sits at one end of its wall, leaving the rest for windows.
         let pos = match b {
             Some(b) => door_pos(seed, a, b),
+            None if spec.room(a).is_some_and(|r| r.windows) => DoorPos::Right,
             None => DoorPos::Center,
         };
         doors.push(DoorSpec {
@@ -381,7 +404,7 @@ pub fn auto_doors(spec: &HouseSpec, placement: &Placement, seed: u64) -> Vec<Doo
 fn longest_exterior(placement: &Placement, id: &str) -> Option<Side> {
     intervals(placement, id)
         .into_iter()
-        .filter(|iv| iv.neighbor.is_none() && iv.len() >= MIN_SHARED)
+        .filter(|iv| iv.outside && iv.len() >= MIN_SHARED)
         .max_by(|a, b| a.len().total_cmp(&b.len()))
         .map(|iv| iv.side)
 }
@@ -414,9 +437,18 @@ pub fn auto_windows(spec: &HouseSpec, placement: &Placement, doors: &[DoorSpec])
     for r in spec.rooms.iter().filter(|r| r.windows) {
         let wet = r.role == Role::Wet;
         let [width, height] = window_size(r.sill, spec.wall_height, wet);
+        let door_sides: Vec<Side> = doors
+            .iter()
+            .filter(|d| d.a == r.id && d.b.is_none())
+            .filter_map(|d| d.side)
+            .collect();
+        // Room for the window, and for the exterior door too on the door's side.
+        let need = |iv: &Interval| {
+            width + 0.6 + if door_sides.contains(&iv.side) { EXTERIOR_DOOR_WIDTH + 0.8 } else { 0.0 }
+        };
         let mut ext: Vec<Interval> = intervals(placement, &r.id)
             .into_iter()
-            .filter(|iv| iv.neighbor.is_none() && iv.len() >= width + 0.6)
+            .filter(|iv| iv.outside && iv.len() >= need(iv))
             .collect();
         if ext.is_empty() {
             continue;
@@ -427,11 +459,6 @@ pub fn auto_windows(spec: &HouseSpec, placement: &Placement, doors: &[DoorSpec])
         } else {
             ((total / 8.0).round() as usize).clamp(1, 3)
         };
-        let door_sides: Vec<Side> = doors
-            .iter()
-            .filter(|d| d.a == r.id && d.b.is_none())
-            .filter_map(|d| d.side)
-            .collect();
         ext.sort_by(|a, b| {
             door_sides
                 .contains(&a.side)

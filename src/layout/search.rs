@@ -28,6 +28,8 @@ pub const POSITIONS_PER_EDGE: usize = 11;
 /// Shortest shared wall (centre line) that takes a door, metres.
 pub const MIN_SHARED: f64 = 1.2;
 const EPS: f64 = 1e-6;
+/// Gaps between rooms narrower than this are slivers, metres.
+const SLOT: f64 = 1.5;
 
 /// An axis-aligned rectangle, metres.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
@@ -95,6 +97,22 @@ impl Rect {
         s
     }
 
+    /// Width of the slot between two rectangles that face each other across a gap narrower
+    /// than `max` (a sliver of outside nobody can use), if any.
+    pub fn slot(&self, o: &Rect, max: f64) -> Option<f64> {
+        let gx = (o.x0 - self.x1).max(self.x0 - o.x1);
+        let gy = (o.y0 - self.y1).max(self.y0 - o.y1);
+        let ox = self.x1.min(o.x1) - self.x0.max(o.x0);
+        let oy = self.y1.min(o.y1) - self.y0.max(o.y0);
+        if gx > EPS && gx < max && oy > EPS {
+            return Some(gx);
+        }
+        if gy > EPS && gy < max && ox > EPS {
+            return Some(gy);
+        }
+        None
+    }
+
     /// Bounding box of two rectangles.
     pub fn union(&self, o: &Rect) -> Rect {
         Rect {
@@ -137,18 +155,31 @@ impl Placement {
         }
     }
 
-    /// Length of the room's boundary not shared with another room, metres.
+    /// Length of the room's walls that face the open outside (not a neighbour, not an
+    /// enclosed courtyard), metres.
     pub fn exterior_length(&self, id: &str) -> f64 {
-        let Some(r) = self.cells.get(id) else {
-            return 0.0;
-        };
-        let shared: f64 = self
-            .cells
+        let outside = Outside::of(self);
+        super::connect::intervals_with(self, id, &outside)
             .iter()
-            .filter(|(k, _)| k.as_str() != id)
-            .map(|(_, o)| r.shared(o))
-            .sum();
-        (2.0 * (r.w() + r.d()) - shared).max(0.0)
+            .filter(|iv| iv.outside)
+            .map(|iv| iv.len())
+            .sum()
+    }
+
+    /// [`Placement::exterior_length`] of every room.
+    pub fn exterior_lengths(&self) -> BTreeMap<String, f64> {
+        let outside = Outside::of(self);
+        self.cells
+            .keys()
+            .map(|id| {
+                let len = super::connect::intervals_with(self, id, &outside)
+                    .iter()
+                    .filter(|iv| iv.outside)
+                    .map(|iv| iv.len())
+                    .sum();
+                (id.clone(), len)
+            })
+            .collect()
     }
 
     /// Shared boundary length of two rooms, metres.
@@ -177,6 +208,94 @@ impl Placement {
         } else {
             moved.iter().sum::<f64>() / moved.len() as f64
         }
+    }
+}
+
+/// The empty space of a placement on the grid of every cell edge coordinate: which empty
+/// pieces connect to the far outside and which are enclosed courtyards (holes).
+#[derive(Debug, Clone)]
+pub struct Outside {
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+    /// Per grid cell (row-major, x fastest): 0 covered by a room, 1 open outside, 2 hole.
+    state: Vec<u8>,
+}
+
+impl Outside {
+    /// The outside of `p`.
+    pub fn of(p: &Placement) -> Outside {
+        let mut xs: Vec<f64> = Vec::new();
+        let mut ys: Vec<f64> = Vec::new();
+        for r in p.cells.values() {
+            xs.extend([r.x0, r.x1]);
+            ys.extend([r.y0, r.y1]);
+        }
+        let dedup = |v: &mut Vec<f64>| {
+            v.sort_by(f64::total_cmp);
+            v.dedup_by(|a, b| (*a - *b).abs() < EPS);
+            if let (Some(lo), Some(hi)) = (v.first().copied(), v.last().copied()) {
+                v.insert(0, lo - 1.0);
+                v.push(hi + 1.0);
+            }
+        };
+        dedup(&mut xs);
+        dedup(&mut ys);
+        let (nx, ny) = (xs.len().saturating_sub(1), ys.len().saturating_sub(1));
+        let mut state = vec![2u8; nx * ny];
+        for j in 0..ny {
+            for i in 0..nx {
+                let c = [(xs[i] + xs[i + 1]) / 2.0, (ys[j] + ys[j + 1]) / 2.0];
+                if p.cells.values().any(|r| r.x0 < c[0] && c[0] < r.x1 && r.y0 < c[1] && c[1] < r.y1) {
+                    state[j * nx + i] = 0;
+                }
+            }
+        }
+        // Flood the empty cells connected to the border.
+        let mut stack: Vec<usize> = (0..state.len()).filter(|&k| {
+            let (i, j) = (k % nx, k / nx);
+            (i == 0 || j == 0 || i + 1 == nx || j + 1 == ny) && state[k] == 2
+        }).collect();
+        while let Some(k) = stack.pop() {
+            if state[k] != 2 {
+                continue;
+            }
+            state[k] = 1;
+            let (i, j) = (k % nx, k / nx);
+            if i > 0 { stack.push(k - 1); }
+            if i + 1 < nx { stack.push(k + 1); }
+            if j > 0 { stack.push(k - nx); }
+            if j + 1 < ny { stack.push(k + nx); }
+        }
+        Outside { xs, ys, state }
+    }
+
+    /// Whether a point is empty and connected to the far outside.
+    pub fn is_open(&self, p: [f64; 2]) -> bool {
+        let (nx, ny) = (self.xs.len().saturating_sub(1), self.ys.len().saturating_sub(1));
+        let find = |v: &[f64], x: f64| -> Option<usize> {
+            if v.len() < 2 || x <= v[0] || x >= v[v.len() - 1] {
+                return None;
+            }
+            Some(v.partition_point(|&e| e <= x) - 1)
+        };
+        match (find(&self.xs, p[0]), find(&self.ys, p[1])) {
+            (Some(i), Some(j)) if i < nx && j < ny => self.state[j * nx + i] == 1,
+            _ => true,
+        }
+    }
+
+    /// Area of the enclosed courtyards, m^2.
+    pub fn hole_area(&self) -> f64 {
+        let nx = self.xs.len().saturating_sub(1);
+        self.state
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| **s == 2)
+            .map(|(k, _)| {
+                let (i, j) = (k % nx, k / nx);
+                (self.xs[i + 1] - self.xs[i]) * (self.ys[j + 1] - self.ys[j])
+            })
+            .sum()
     }
 }
 
@@ -291,10 +410,55 @@ pub fn order(spec: &HouseSpec) -> Vec<usize> {
     out
 }
 
+/// Relations between rooms as index tables (order positions), built once per search.
+struct Tables {
+    /// Per order position: order positions of the room's parents.
+    parents: Vec<Vec<usize>>,
+    /// Link between two order positions, if any.
+    link: Vec<Vec<Option<Link>>>,
+    /// Per order position: whether `parents` contains the other position.
+    is_parent: Vec<Vec<bool>>,
+}
+
+impl Tables {
+    fn new(spec: &HouseSpec, order: &[usize]) -> Tables {
+        let n = spec.rooms.len();
+        let mut pos_of = vec![0; n];
+        for (pos, &i) in order.iter().enumerate() {
+            pos_of[i] = pos;
+        }
+        let pos = |id: &str| spec.index(id).map(|i| pos_of[i]);
+        let mut parents = vec![Vec::new(); n];
+        let mut is_parent = vec![vec![false; n]; n];
+        let mut link = vec![vec![None; n]; n];
+        for (k, &i) in order.iter().enumerate() {
+            parents[k] = spec.rooms[i].parents.iter().filter_map(|p| pos(p)).collect();
+            for &p in &parents[k] {
+                is_parent[k][p] = true;
+                is_parent[p][k] = true;
+            }
+        }
+        for a in &spec.adjacency {
+            if let (Some(x), Some(y)) = (pos(&a.a), pos(&a.b)) {
+                link[x][y] = Some(a.link);
+                link[y][x] = Some(a.link);
+            }
+        }
+        Tables {
+            parents,
+            link,
+            is_parent,
+        }
+    }
+}
+
 struct Search<'a> {
     spec: &'a HouseSpec,
     order: Vec<usize>,
+    tables: Tables,
     cfg: SearchConfig,
+    /// Previous cell per order position.
+    previous_cells: Vec<Option<Rect>>,
     previous: Option<&'a Placement>,
     relaxed: bool,
     nodes: usize,
@@ -318,88 +482,87 @@ impl Search<'_> {
         false
     }
 
-    fn prev_cell(&self, room: usize) -> Option<Rect> {
-        self.previous
-            .and_then(|p| p.cells.get(&self.spec.rooms[room].id).copied())
-    }
-
     /// Whether `cell` for the room at order position `k` meets the constraints against the
     /// rooms placed so far.
     fn admissible(&self, k: usize, cell: &Rect) -> bool {
         if self.placed.iter().any(|p| p.overlaps(cell)) {
             return false;
         }
-        if !self.placed.iter().any(|p| p.shared(cell) > EPS) && !self.placed.is_empty() {
+        if !self.placed.is_empty() && !self.placed.iter().any(|p| p.shared(cell) > EPS) {
             return false;
         }
         if self.relaxed {
             return true;
         }
-        let room = &self.spec.rooms[self.order[k]];
-        let cell_of = |id: &str| -> Option<Rect> {
-            let j = self.spec.index(id)?;
-            let pos = self.order.iter().position(|&o| o == j)?;
-            (pos < k).then(|| self.placed[pos])
-        };
         // Required pairs with rooms already placed.
-        for p in self.spec.adjacency.iter().filter(|p| p.required()) {
-            let other = if p.a == room.id {
-                &p.b
-            } else if p.b == room.id {
-                &p.a
-            } else {
-                continue;
-            };
-            if let Some(o) = cell_of(other)
-                && o.shared(cell) < MIN_SHARED - EPS
+        for (pos, p) in self.placed.iter().enumerate() {
+            if self.tables.link[k][pos].is_some_and(|l| l != Link::Preferred)
+                && p.shared(cell) < MIN_SHARED - EPS
             {
                 return false;
             }
         }
         // At least one placed parent with a door-long wall.
-        let placed_parents: Vec<Rect> = room.parents.iter().filter_map(|p| cell_of(p)).collect();
-        if !placed_parents.is_empty()
-            && !placed_parents
-                .iter()
-                .any(|o| o.shared(cell) >= MIN_SHARED - EPS)
-        {
-            return false;
+        let mut any_parent = false;
+        for &p in &self.tables.parents[k] {
+            if p < k {
+                if self.placed[p].shared(cell) >= MIN_SHARED - EPS {
+                    return true;
+                }
+                any_parent = true;
+            }
         }
-        true
+        !any_parent
     }
 
     fn local_score(&self, k: usize, cell: &Rect, rot: bool) -> f64 {
         let room = &self.spec.rooms[self.order[k]];
         let mut score = 1.0;
         let mut contact = 0.0;
-        for (pos, p) in self.placed.iter().enumerate() {
-            let shared = p.shared(cell);
-            contact += shared;
-            if shared < MIN_SHARED - EPS {
-                continue;
-            }
-            let other = &self.spec.rooms[self.order[pos]];
-            if room.parents.contains(&other.id) || other.parents.contains(&room.id) {
-                score += 2.0;
-            }
-            if let Some(pair) = self.spec.pair(&room.id, &other.id) {
-                score += if pair.link == Link::Preferred { 1.0 } else { 2.0 };
-            }
-        }
-        // Compact: close to the centroid, much contact.
         let (mut cx, mut cy, mut a) = (0.0, 0.0, 0.0);
-        for p in &self.placed {
+        for (pos, p) in self.placed.iter().enumerate() {
             let c = p.center();
             cx += c[0] * p.area();
             cy += c[1] * p.area();
             a += p.area();
+            let shared = p.shared(cell);
+            contact += shared;
+            if shared <= EPS {
+                if p.slot(cell, SLOT).is_some() {
+                    score -= 1.5;
+                }
+                continue;
+            }
+            // Flush corners make clean walls (no slivers of wall between rooms).
+            let flush = [
+                (p.x0 - cell.x0).abs(),
+                (p.x1 - cell.x1).abs(),
+                (p.y0 - cell.y0).abs(),
+                (p.y1 - cell.y1).abs(),
+            ]
+            .iter()
+            .filter(|d| **d < EPS)
+            .count();
+            score += 0.4 * flush as f64;
+            if shared < MIN_SHARED - EPS {
+                continue;
+            }
+            if self.tables.is_parent[k][pos] {
+                score += 2.0;
+            }
+            match self.tables.link[k][pos] {
+                Some(Link::Preferred) => score += 1.0,
+                Some(_) => score += 2.0,
+                None => {}
+            }
         }
+        // Compact: close to the centroid, much contact.
         if a > 0.0 {
             let c = cell.center();
             score -= 0.15 * (c[0] - cx / a).hypot(c[1] - cy / a);
         }
         score += 1.5 * contact / (2.0 * (cell.w() + cell.d()));
-        if let Some(prev) = self.prev_cell(self.order[k]) {
+        if let Some(prev) = self.previous_cells[k] {
             let (c, pc) = (cell.center(), prev.center());
             score += 4.0 * (-(c[0] - pc[0]).hypot(c[1] - pc[1]) / 2.0).exp();
             let prev_rot = (prev.w() < prev.d()) != (room.size[0] < room.size[1]);
@@ -414,26 +577,25 @@ impl Search<'_> {
     fn candidates(&self, k: usize) -> Vec<(f64, Rect)> {
         let i = self.order[k];
         let t = self.cfg.wall_thickness;
-        let prev = self.prev_cell(i);
-        let mut seen: Vec<Rect> = Vec::new();
+        let prev = self.previous_cells[k];
+        let mut seen: std::collections::HashSet<[i64; 4]> = std::collections::HashSet::new();
         let mut out: Vec<(f64, Rect)> = Vec::new();
         let square = (self.spec.rooms[i].size[0] - self.spec.rooms[i].size[1]).abs() < EPS;
         let rots: &[bool] = if square { &[false] } else { &[false, true] };
         for &rot in rots {
             let [w, d] = cell_size(self.spec, i, rot, t);
-            let push = |cell: Rect, out: &mut Vec<(f64, Rect)>, seen: &mut Vec<Rect>| {
-                let key = |r: &Rect| [r.x0, r.y0, r.x1, r.y1].map(|v| (v * 1e4).round() as i64);
-                if seen.iter().any(|s| key(s) == key(&cell)) {
+            let mut push = |cell: Rect| {
+                let key = [cell.x0, cell.y0, cell.x1, cell.y1].map(|v| (v * 1e4).round() as i64);
+                if !seen.insert(key) {
                     return;
                 }
-                seen.push(cell);
                 if self.admissible(k, &cell) {
                     out.push((self.local_score(k, &cell, rot), cell));
                 }
             };
             if self.placed.is_empty() {
                 let origin = prev.map(|p| [p.x0, p.y0]).unwrap_or([0.0, 0.0]);
-                push(Rect::at(origin[0], origin[1], w, d), &mut out, &mut seen);
+                push(Rect::at(origin[0], origin[1], w, d));
                 continue;
             }
             for p in &self.placed {
@@ -458,12 +620,12 @@ impl Search<'_> {
                     v
                 };
                 for x in along(p.x0, p.x1, w, prev.map(|r| r.x0)) {
-                    push(Rect::at(x, p.y1, w, d), &mut out, &mut seen);
-                    push(Rect::at(x, p.y0 - d, w, d), &mut out, &mut seen);
+                    push(Rect::at(x, p.y1, w, d));
+                    push(Rect::at(x, p.y0 - d, w, d));
                 }
                 for y in along(p.y0, p.y1, d, prev.map(|r| r.y0)) {
-                    push(Rect::at(p.x1, y, w, d), &mut out, &mut seen);
-                    push(Rect::at(p.x0 - w, y, w, d), &mut out, &mut seen);
+                    push(Rect::at(p.x1, y, w, d));
+                    push(Rect::at(p.x0 - w, y, w, d));
                 }
             }
         }
@@ -526,16 +688,29 @@ pub fn global_score(spec: &HouseSpec, placement: &Placement, previous: Option<&P
             .count();
         score += 2.0 * ok as f64 / pairs.len() as f64;
     }
+    let exterior = placement.exterior_lengths();
+    let ext = |id: &str| exterior.get(id).copied().unwrap_or(0.0);
     let want: Vec<_> = spec.rooms.iter().filter(|r| r.windows).collect();
     if !want.is_empty() {
-        let lit = want
-            .iter()
-            .filter(|r| placement.exterior_length(&r.id) >= MIN_SHARED)
-            .count();
+        let lit = want.iter().filter(|r| ext(&r.id) >= MIN_SHARED).count();
         score += 3.0 * lit as f64 / want.len() as f64;
     }
-    if placement.exterior_length(&spec.entrance) < MIN_SHARED {
+    if ext(&spec.entrance) < MIN_SHARED {
         score -= 5.0;
+    }
+    // Slots too narrow to walk through between rooms.
+    let cells: Vec<&Rect> = placement.cells.values().collect();
+    for (i, a) in cells.iter().enumerate() {
+        for b in &cells[i + 1..] {
+            if a.slot(b, SLOT).is_some() {
+                score -= 2.0;
+            }
+        }
+    }
+    // Enclosed courtyards: unlit, unreachable pockets.
+    let holes = Outside::of(placement).hole_area();
+    if holes > 0.0 {
+        score -= 3.0 + holes;
     }
     if let Some(b) = placement.bounds() {
         let aspect = b.w().max(b.d()) / b.w().min(b.d()).max(EPS);
@@ -570,10 +745,17 @@ pub fn place(
     let mut stats = SearchStats::default();
     let mut result: Option<Vec<Rect>> = None;
     for relaxed in [false, true] {
+        let tables = Tables::new(spec, &order);
+        let previous_cells = order
+            .iter()
+            .map(|&i| previous.and_then(|p| p.cells.get(&spec.rooms[i].id).copied()))
+            .collect();
         let mut s = Search {
             spec,
             order: order.clone(),
+            tables,
             cfg: *cfg,
+            previous_cells,
             previous,
             relaxed,
             nodes: 0,

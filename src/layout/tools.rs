@@ -372,7 +372,7 @@ pub struct DoorArgs {
 pub struct Added {
     /// Its id.
     pub id: String,
-    /// Problems building it (empty: it is in place).
+    /// Remarks (empty: it is in place as asked).
     pub notes: Vec<String>,
 }
 
@@ -393,7 +393,7 @@ fn add_door(s: &mut LayoutState, a: DoorArgs) -> Result<Added, ToolError> {
     let (b, side) = if outside {
         let fits: Vec<_> = ivs
             .iter()
-            .filter(|iv| iv.neighbor.is_none() && iv.len() >= width + 0.35)
+            .filter(|iv| iv.outside && iv.len() >= width + 0.35)
             .filter(|iv| side.is_none_or(|sd| iv.side == sd))
             .collect();
         let best = fits
@@ -448,14 +448,12 @@ fn add_door(s: &mut LayoutState, a: DoorArgs) -> Result<Added, ToolError> {
         auto: false,
     });
     let (_, notes) = s.rooms();
-    Ok(Added {
-        notes: notes
-            .notes
-            .into_iter()
-            .filter(|n| n.starts_with(&id))
-            .collect(),
-        id,
-    })
+    if let Some(n) = notes.notes.iter().find(|n| n.starts_with(&id)) {
+        let n = n.clone();
+        s.doors.retain(|d| d.id != id);
+        return Err(fail(n));
+    }
+    Ok(Added { notes: Vec::new(), id })
 }
 
 /// An id.
@@ -527,7 +525,7 @@ fn add_window(s: &mut LayoutState, a: WindowArgs) -> Result<Added, ToolError> {
     };
     let iv = intervals(&s.placement, &a.room)
         .into_iter()
-        .filter(|iv| iv.neighbor.is_none() && iv.len() >= width + 0.4)
+        .filter(|iv| iv.outside && iv.len() >= width + 0.4)
         .filter(|iv| want.is_none_or(|sd| iv.side == sd))
         .max_by(|x, y| x.len().total_cmp(&y.len()))
         .ok_or_else(|| {
@@ -556,14 +554,12 @@ fn add_window(s: &mut LayoutState, a: WindowArgs) -> Result<Added, ToolError> {
         auto: false,
     });
     let (_, notes) = s.rooms();
-    Ok(Added {
-        notes: notes
-            .notes
-            .into_iter()
-            .filter(|n| n.starts_with(&id))
-            .collect(),
-        id,
-    })
+    if let Some(n) = notes.notes.iter().find(|n| n.starts_with(&id)) {
+        let n = n.clone();
+        s.windows.retain(|w| w.id != id);
+        return Err(fail(n));
+    }
+    Ok(Added { notes: Vec::new(), id })
 }
 
 fn remove_window(s: &mut LayoutState, a: IdArgs) -> Result<LayoutSummary, ToolError> {

@@ -55,6 +55,7 @@ struct Piece {
     end: [f64; 2],
     side: Side,
     neighbor: Option<String>,
+    outside: bool,
     openings: Vec<Opening>,
 }
 
@@ -115,6 +116,7 @@ pub fn build_rooms(
                 end,
                 side: iv.side,
                 neighbor: iv.neighbor.clone(),
+                outside: iv.outside,
                 openings,
             });
         }
@@ -122,7 +124,7 @@ pub fn build_rooms(
         for d in doors.iter().filter(|d| d.a == r.id && d.b.is_none()) {
             let best = mine
                 .iter_mut()
-                .filter(|p| p.neighbor.is_none() && Some(p.side) == d.side.or(Some(p.side)))
+                .filter(|p| p.outside && Some(p.side) == d.side.or(Some(p.side)))
                 .max_by(|a, b| seg_len(a).total_cmp(&seg_len(b)));
             match best.and_then(|p| door_center(seg_len(p), t, d.width, d.pos).map(|c| (p, c))) {
                 Some((p, c)) => {
@@ -147,7 +149,7 @@ pub fn build_rooms(
             };
             let mut placed = false;
             let mut order: Vec<usize> = (0..mine.len())
-                .filter(|&i| mine[i].neighbor.is_none() && mine[i].side == w.side)
+                .filter(|&i| mine[i].outside && mine[i].side == w.side)
                 .collect();
             order.sort_by(|&a, &b| {
                 axis_distance(&mine[a], want_axis)
