@@ -9,7 +9,7 @@ from pydrake.common.eigen_geometry import Quaternion
 from pydrake.geometry import Role
 from pydrake.multibody.tree import ModelInstanceIndex
 
-from drake_bridge import BRIDGE_VERSION, PROTOCOL
+from drake_bridge import BRIDGE_VERSION, PROTOCOL, layout_checks
 from drake_bridge.errors import BadRequest
 from drake_bridge.plant_cache import PlantCache
 
@@ -213,4 +213,5 @@ OPS = {
     "load": op_load,
     "penetrations": op_penetrations,
     "collision_report": op_collision_report,
+    "drop_spheres": layout_checks.op_drop_spheres,
 }
