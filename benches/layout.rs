@@ -24,8 +24,8 @@ const SIZED: [(&str, &str); 4] = [
     ),
     (
         "15 rooms",
-        "A boutique hotel with a reception, a corridor, five guest bedrooms with en-suite \
-         bathrooms, a restaurant, a kitchen, a lounge, and a gym.",
+        "A boutique hotel with a reception, a corridor, four guest bedrooms with en-suite \
+         bathrooms, a restaurant, a kitchen, a bar, a lounge, and a gym.",
     ),
 ];
 

@@ -21,9 +21,16 @@ fn resizing_one_room_keeps_the_others_in_place() {
         // Grow the room by about 20% of its area.
         let (w, d) = (r.size[0] * 1.1, r.size[1] * 1.1);
         tools
-            .call(&mut s, Role::Designer, "resize_room", json!({"room": r.id, "width_m": w, "depth_m": d}))
+            .call(
+                &mut s,
+                Role::Designer,
+                "resize_room",
+                json!({"room": r.id, "width_m": w, "depth_m": d}),
+            )
             .unwrap();
-        let mean = s.placement.mean_displacement(&base.placement, &[r.id.as_str()]);
+        let mean = s
+            .placement
+            .mean_displacement(&base.placement, &[r.id.as_str()]);
         eprintln!("{}: mean displacement of the others {mean:.3} m", r.id);
         let v = s.validation();
         assert!(v.ok, "{}: {:?}", r.id, v.errors);

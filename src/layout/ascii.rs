@@ -215,8 +215,14 @@ mod tests {
         for r in &rooms {
             assert!(text.contains(&r.id), "{text}");
         }
-        let plan: String = text.lines().take_while(|l| !l.starts_with("legend")).collect();
-        assert!(plan.contains('D') && plan.contains('E') && plan.contains('W'), "{text}");
+        let plan: String = text
+            .lines()
+            .take_while(|l| !l.starts_with("legend"))
+            .collect();
+        assert!(
+            plan.contains('D') && plan.contains('E') && plan.contains('W'),
+            "{text}"
+        );
         assert!(text.contains("exterior") && text.contains("shared with"));
         let _ = brief::read("");
     }

@@ -103,7 +103,9 @@ fn tokens(text: &str, from: usize, to: usize) -> Vec<Tok> {
     // Possessive "'s" belongs to the word only in room words ("kid's room"); elsewhere drop it.
     for t in &mut out {
         if let Some(stem) = t.w.strip_suffix("'s")
-            && !room_words().iter().any(|(w, _)| w.iter().any(|x| x == &t.w))
+            && !room_words()
+                .iter()
+                .any(|(w, _)| w.iter().any(|x| x == &t.w))
         {
             t.w = stem.to_string();
         }
@@ -177,15 +179,19 @@ fn ordinal_word(w: &str) -> Option<usize> {
         "first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth", "ninth",
         "tenth",
     ];
-    WORDS.iter().position(|x| *x == w).map(|i| i + 1).or(match w {
-        "1st" => Some(1),
-        "2nd" => Some(2),
-        "3rd" => Some(3),
-        "4th" => Some(4),
-        "5th" => Some(5),
-        "last" => Some(usize::MAX),
-        _ => None,
-    })
+    WORDS
+        .iter()
+        .position(|x| *x == w)
+        .map(|i| i + 1)
+        .or(match w {
+            "1st" => Some(1),
+            "2nd" => Some(2),
+            "3rd" => Some(3),
+            "4th" => Some(4),
+            "5th" => Some(5),
+            "last" => Some(usize::MAX),
+            _ => None,
+        })
 }
 
 fn size_word(w: &str) -> Option<f64> {
@@ -272,7 +278,10 @@ fn count_before(toks: &[Tok], at: usize) -> Option<usize> {
 fn determiner_before(toks: &[Tok], at: usize) -> Option<String> {
     for i in (at.saturating_sub(3)..at).rev() {
         let w = toks[i].w.as_str();
-        if matches!(w, "the" | "its" | "their" | "this" | "that" | "each" | "every") {
+        if matches!(
+            w,
+            "the" | "its" | "their" | "this" | "that" | "each" | "every"
+        ) {
             return Some(w.to_string());
         }
         if number_word(w).is_some() || matches!(w, "and" | "with" | "of" | "in") {
@@ -295,29 +304,14 @@ fn ordinal_before(toks: &[Tok], at: usize) -> Option<usize> {
 }
 
 fn size_before(toks: &[Tok], at: usize) -> Option<f64> {
-    (at.saturating_sub(3)..at).rev().find_map(|i| size_word(&toks[i].w))
+    (at.saturating_sub(3)..at)
+        .rev()
+        .find_map(|i| size_word(&toks[i].w))
 }
 
 const VERBS: [&str; 20] = [
-    "has",
-    "have",
-    "contains",
-    "contain",
-    "features",
-    "feature",
-    "includes",
-    "include",
-    "holds",
-    "hold",
-    "is",
-    "are",
-    "offers",
-    "gets",
-    "comes",
-    "houses",
-    "displays",
-    "provides",
-    "opens",
+    "has", "have", "contains", "contain", "features", "feature", "includes", "include", "holds",
+    "hold", "is", "are", "offers", "gets", "comes", "houses", "displays", "provides", "opens",
     "should",
 ];
 
@@ -339,7 +333,9 @@ fn clauses(text: &str, start: usize, end: usize) -> Vec<Clause> {
         if m.first == 0 {
             continue;
         }
-        let verb_after = toks.get(m.last + 1).is_some_and(|t| VERBS.contains(&t.w.as_str()));
+        let verb_after = toks
+            .get(m.last + 1)
+            .is_some_and(|t| VERBS.contains(&t.w.as_str()));
         // Walk back over an ordinal to the determiner.
         let mut d = m.first - 1;
         if ordinal_word(&toks[d].w).is_some() && d > 0 {
@@ -348,7 +344,11 @@ fn clauses(text: &str, start: usize, end: usize) -> Vec<Clause> {
         let det = matches!(toks[d].w.as_str(), "the" | "its" | "their");
         let joined = d > 0 && matches!(toks[d - 1].w.as_str(), "and" | "while" | "whereas" | "but");
         if verb_after && det && (joined || d == 0) {
-            let cut = if joined { toks[d - 1].start } else { toks[d].start };
+            let cut = if joined {
+                toks[d - 1].start
+            } else {
+                toks[d].start
+            };
             if cut > start {
                 cuts.push(cut);
             }
@@ -380,7 +380,11 @@ fn house_wide(toks: &[Tok]) -> bool {
         || w.windows(2).any(|p| {
             matches!(
                 (p[0], p[1]),
-                ("all", "rooms") | ("every", "room") | ("each", "room") | ("all", "floors") | ("all", "walls")
+                ("all", "rooms")
+                    | ("every", "room")
+                    | ("each", "room")
+                    | ("all", "floors")
+                    | ("all", "walls")
             )
         })
         || (toks.len() > 1
@@ -486,11 +490,7 @@ fn main_room(rooms: &[RoomRequest]) -> usize {
     rooms
         .iter()
         .position(|r| role(r) == Role::Entry)
-        .or_else(|| {
-            rooms
-                .iter()
-                .position(|r| matches!(role(r), Role::Public))
-        })
+        .or_else(|| rooms.iter().position(|r| matches!(role(r), Role::Public)))
         .unwrap_or(0)
 }
 
@@ -537,7 +537,9 @@ fn room_list(text: &str, s0: (usize, usize)) -> (usize, Vec<Listed>, Vec<Mention
             let mut m = m;
             m.room_type = "en_suite".into();
             listed.push(Listed {
-                count: count_before(&toks, m.first).filter(|c| *c <= n).unwrap_or(n),
+                count: count_before(&toks, m.first)
+                    .filter(|c| *c <= n)
+                    .unwrap_or(n),
                 mention: m,
                 owner_of: Some(owner),
             });
@@ -589,37 +591,34 @@ pub fn read(prompt: &str) -> HouseBrief {
         wall_material: None,
     };
 
-    let add = |brief: &mut HouseBrief, m: &Mention, count: usize, owner: Option<usize>, size: f64| {
-        let first_index = brief.rooms.len();
-        for i in 0..count {
-            brief.rooms.push(RoomRequest {
-                room_type: m.room_type.clone(),
-                label: if m.room_type == "en_suite" {
-                    "en-suite bathroom".into()
-                } else {
-                    m.label.clone()
-                },
-                ordinal: [i + 1, count],
-                text: Vec::new(),
-                size_scale: size,
-                owner: owner.map(|o| o + i),
-                floor_material: None,
-                wall_material: None,
-            });
-        }
-        first_index
-    };
+    let add =
+        |brief: &mut HouseBrief, m: &Mention, count: usize, owner: Option<usize>, size: f64| {
+            let first_index = brief.rooms.len();
+            for i in 0..count {
+                brief.rooms.push(RoomRequest {
+                    room_type: m.room_type.clone(),
+                    label: if m.room_type == "en_suite" {
+                        "en-suite bathroom".into()
+                    } else {
+                        m.label.clone()
+                    },
+                    ordinal: [i + 1, count],
+                    text: Vec::new(),
+                    size_scale: size,
+                    owner: owner.map(|o| o + i),
+                    floor_material: None,
+                    wall_material: None,
+                });
+            }
+            first_index
+        };
 
-    let house = listed_total >= 2
-        || (listed_total == 1 && (head_room.is_some() || head_has_house_noun));
+    let house =
+        listed_total >= 2 || (listed_total == 1 && (head_room.is_some() || head_has_house_noun));
     if !house {
         // One room: its type is the first room word of the prompt (any sentence).
         let all = tokens(text, 0, text.len());
-        let m = head_room.or_else(|| {
-            mentions(&all)
-                .into_iter()
-                .find(|m| m.room_type != "room")
-        });
+        let m = head_room.or_else(|| mentions(&all).into_iter().find(|m| m.room_type != "room"));
         let m = m.unwrap_or(Mention {
             room_type: "room".into(),
             first: 0,
@@ -648,7 +647,10 @@ pub fn read(prompt: &str) -> HouseBrief {
         .find_map(|t| size_word(&t.w))
         .map(|s| if s < 1.0 { 0.9 } else { 1.12 })
         .unwrap_or(1.0);
-    brief.head = text[first.0..head_end].trim().trim_end_matches(',').to_string();
+    brief.head = text[first.0..head_end]
+        .trim()
+        .trim_end_matches(',')
+        .to_string();
     // A head that is itself a room ("A bedroom with an en-suite bathroom") is the first room.
     let first_toks = tokens(text, first.0, first.1);
     let mut starts: Vec<usize> = Vec::new();
@@ -684,8 +686,12 @@ pub fn read(prompt: &str) -> HouseBrief {
             .iter()
             .map(|t| t.w.as_str())
             .collect();
-        let open_before = (a.first.saturating_sub(3)..a.first)
-            .any(|i| matches!(first_toks[i].w.as_str(), "open-plan" | "open" | "open-concept"));
+        let open_before = (a.first.saturating_sub(3)..a.first).any(|i| {
+            matches!(
+                first_toks[i].w.as_str(),
+                "open-plan" | "open" | "open-concept"
+            )
+        });
         if open_before && between.contains(&"and") && between.len() <= 3 {
             let ia = brief.rooms.iter().position(|r| r.label == a.label);
             let ib = brief.rooms.iter().position(|r| r.label == b.label);
@@ -710,12 +716,7 @@ pub fn read(prompt: &str) -> HouseBrief {
 }
 
 /// The room a mention in a later sentence refers to.
-fn resolve(
-    brief: &HouseBrief,
-    toks: &[Tok],
-    m: &Mention,
-    subject: Option<usize>,
-) -> Option<usize> {
+fn resolve(brief: &HouseBrief, toks: &[Tok], m: &Mention, subject: Option<usize>) -> Option<usize> {
     let det = determiner_before(toks, m.first);
     if det.as_deref() == Some("its")
         && let Some(owner) = subject
@@ -756,7 +757,12 @@ fn resolve(
     }
 }
 
-fn attribute(brief: &mut HouseBrief, text: &str, clause: &Clause, last_subject: &mut Option<usize>) {
+fn attribute(
+    brief: &mut HouseBrief,
+    text: &str,
+    clause: &Clause,
+    last_subject: &mut Option<usize>,
+) {
     let toks = &clause.toks;
     let body = text[clause.start..clause.end]
         .trim()
@@ -793,7 +799,10 @@ fn attribute(brief: &mut HouseBrief, text: &str, clause: &Clause, last_subject: 
         return;
     }
     let target = subject
-        .or_else(|| ms.iter().find_map(|m| resolve(brief, toks, m, *last_subject)))
+        .or_else(|| {
+            ms.iter()
+                .find_map(|m| resolve(brief, toks, m, *last_subject))
+        })
         .or_else(|| room_for_items(toks, &brief.rooms))
         .unwrap_or_else(|| main_room(&brief.rooms));
     // "The kitchen is open to the dining room", "opens onto the living room".
@@ -922,13 +931,23 @@ mod tests {
         assert!(b.is_house);
         assert_eq!(
             types(&b),
-            ["reception", "exam_room", "exam_room", "xray_room", "corridor", "bathroom"]
+            [
+                "reception",
+                "exam_room",
+                "exam_room",
+                "xray_room",
+                "corridor",
+                "bathroom"
+            ]
         );
         assert!(b.rooms[1].text[0].contains("cabinet"));
         assert!(b.rooms[2].text[0].contains("sink"));
         assert!(b.rooms[4].text[0].contains("bench"));
         let p = b.room_prompt(2);
-        assert!(p.starts_with("An exam room (2 of 2) in a dental office."), "{p}");
+        assert!(
+            p.starts_with("An exam room (2 of 2) in a dental office."),
+            "{p}"
+        );
     }
 
     #[test]
@@ -940,7 +959,11 @@ mod tests {
              second guest bedroom has a bed and a desk and its bathroom has a toilet, a sink, and \
              a bathtub.",
         );
-        let en: Vec<&RoomRequest> = b.rooms.iter().filter(|r| r.room_type == "en_suite").collect();
+        let en: Vec<&RoomRequest> = b
+            .rooms
+            .iter()
+            .filter(|r| r.room_type == "en_suite")
+            .collect();
         assert_eq!(en.len(), 4);
         let beds: Vec<usize> = (0..b.rooms.len())
             .filter(|&i| b.rooms[i].room_type == "guest_bedroom")
@@ -956,12 +979,16 @@ mod tests {
 
     #[test]
     fn head_room_is_the_building_only_with_a_list() {
-        let b = read("A small restaurant with a dining area, a kitchen, a bar, a storage room, and a bathroom.");
+        let b = read(
+            "A small restaurant with a dining area, a kitchen, a bar, a storage room, and a bathroom.",
+        );
         assert_eq!(
             types(&b),
             ["dining_room", "kitchen", "bar", "storage_room", "bathroom"]
         );
-        let b = read("A restaurant with four dining tables, each surrounded by four chairs. A bar counter runs along one wall with six bar stools in front.");
+        let b = read(
+            "A restaurant with four dining tables, each surrounded by four chairs. A bar counter runs along one wall with six bar stools in front.",
+        );
         assert!(!b.is_house);
         assert_eq!(types(&b), ["restaurant"]);
         let b = read("A bedroom with an en-suite bathroom.");

@@ -22,7 +22,11 @@ pub struct BuiltinLayoutDesigner;
 
 fn strs(v: &Value) -> Vec<String> {
     v.as_array()
-        .map(|a| a.iter().filter_map(|x| x.as_str().map(str::to_string)).collect())
+        .map(|a| {
+            a.iter()
+                .filter_map(|x| x.as_str().map(str::to_string))
+                .collect()
+        })
         .unwrap_or_default()
 }
 
@@ -49,7 +53,8 @@ impl BuiltinLayoutDesigner {
                     let _ = cx.call(state, Role::Designer, "remove_door", json!({"id": door}));
                 }
             }
-            let reachable = |n: &str| !lost.contains(&n.to_string()) && !through_bath.contains(&n.to_string());
+            let reachable =
+                |n: &str| !lost.contains(&n.to_string()) && !through_bath.contains(&n.to_string());
             let mut options: Vec<(String, f64, i32)> = r["neighbors"]
                 .as_array()
                 .into_iter()
@@ -209,7 +214,10 @@ impl Critic<LayoutState> for BuiltinLayoutCritic {
         let v = cx
             .call(state, Role::Critic, "validate", json!({}))
             .map_err(|e| unusable(e.message))?;
-        let rooms: Vec<&Value> = obs["rooms"].as_array().map(|a| a.iter().collect()).unwrap_or_default();
+        let rooms: Vec<&Value> = obs["rooms"]
+            .as_array()
+            .map(|a| a.iter().collect())
+            .unwrap_or_default();
         let mut issues = Vec::new();
         let issue = |ids: Vec<String>, d: String| Issue {
             objects: ids,
@@ -234,7 +242,10 @@ impl Critic<LayoutState> for BuiltinLayoutCritic {
             }
             if w.min(d) < 1.5 {
                 proportions -= 2.0;
-                issues.push(issue(vec![id.clone()], format!("{id} is only {:.1} m wide", w.min(d))));
+                issues.push(issue(
+                    vec![id.clone()],
+                    format!("{id} is only {:.1} m wide", w.min(d)),
+                ));
             }
         }
 
@@ -263,13 +274,21 @@ impl Critic<LayoutState> for BuiltinLayoutCritic {
         }
 
         // Daylight.
-        let want: Vec<&&Value> = rooms.iter().filter(|r| r["wants_windows"] == true).collect();
-        let lit = want.iter().filter(|r| r["windows"].as_u64().unwrap_or(0) > 0).count();
+        let want: Vec<&&Value> = rooms
+            .iter()
+            .filter(|r| r["wants_windows"] == true)
+            .collect();
+        let lit = want
+            .iter()
+            .filter(|r| r["windows"].as_u64().unwrap_or(0) > 0)
+            .count();
         for r in want.iter().filter(|r| r["windows"] == 0) {
             let id = r["id"].as_str().unwrap_or_default().to_string();
             issues.push(issue(
                 vec![id.clone()],
-                format!("{id} has no window; add one on an outside wall (or move it to the outside)"),
+                format!(
+                    "{id} has no window; add one on an outside wall (or move it to the outside)"
+                ),
             ));
         }
         let lighting = if want.is_empty() {
@@ -293,7 +312,10 @@ impl Critic<LayoutState> for BuiltinLayoutCritic {
             }
         }
         for m in obs["requested_materials"].as_array().into_iter().flatten() {
-            let Some(r) = m[0].as_str().and_then(|id| rooms.iter().find(|r| r["id"] == id)) else {
+            let Some(r) = m[0]
+                .as_str()
+                .and_then(|id| rooms.iter().find(|r| r["id"] == id))
+            else {
                 continue;
             };
             for (k, key) in [(1, "floor"), (2, "wall")] {
@@ -339,12 +361,19 @@ impl Critic<LayoutState> for BuiltinLayoutCritic {
             && (obs["wall_height_m"].as_f64().unwrap_or(0.0) - h).abs() > 0.05
         {
             following -= 2.0;
-            issues.push(issue(vec![], format!("the prompt asks for {h:.2} m ceilings")));
+            issues.push(issue(
+                vec![],
+                format!("the prompt asks for {h:.2} m ceilings"),
+            ));
         }
 
         Ok(Critique {
             scores: vec![
-                score("room_proportions", proportions, "aspect ratios and widths of the rooms".into()),
+                score(
+                    "room_proportions",
+                    proportions,
+                    "aspect ratios and widths of the rooms".into(),
+                ),
                 score(
                     "spatial_flow",
                     flow,
@@ -358,9 +387,16 @@ impl Critic<LayoutState> for BuiltinLayoutCritic {
                 score(
                     "natural_lighting",
                     lighting,
-                    format!("{lit} of {} rooms that want daylight have windows", want.len()),
+                    format!(
+                        "{lit} of {} rooms that want daylight have windows",
+                        want.len()
+                    ),
                 ),
-                score("material_consistency", materials, "floor and wall materials per room".into()),
+                score(
+                    "material_consistency",
+                    materials,
+                    "floor and wall materials per room".into(),
+                ),
                 score(
                     "prompt_following",
                     following,

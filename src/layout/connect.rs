@@ -20,7 +20,9 @@ pub const DOOR: [f64; 2] = [0.9, 2.1];
 pub const EXTERIOR_DOOR_WIDTH: f64 = 1.0;
 
 /// A side of a rectangular room.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema, PartialOrd, Ord)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema, PartialOrd, Ord,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Side {
     /// Low y.
@@ -93,7 +95,8 @@ pub struct DoorSpec {
 impl DoorSpec {
     /// Whether the door joins `x` and `y` (`None`: outside).
     pub fn joins(&self, x: &str, y: Option<&str>) -> bool {
-        (self.a == x && self.b.as_deref() == y) || (Some(self.a.as_str()) == y && self.b.as_deref() == Some(x))
+        (self.a == x && self.b.as_deref() == y)
+            || (Some(self.a.as_str()) == y && self.b.as_deref() == Some(x))
     }
 }
 
@@ -352,7 +355,9 @@ pub fn auto_doors(spec: &HouseSpec, placement: &Placement, seed: u64) -> Vec<Doo
         }
     }
     for p in spec.adjacency.iter().filter(|p| p.link == Link::Door) {
-        if shared(&p.a, &p.b) >= MIN_SHARED - EPS && !doors.iter().any(|d| d.joins(&p.a, Some(&p.b))) {
+        if shared(&p.a, &p.b) >= MIN_SHARED - EPS
+            && !doors.iter().any(|d| d.joins(&p.a, Some(&p.b)))
+        {
             // An en-suite keeps its single door.
             if is_en_suite(&p.a) || is_en_suite(&p.b) {
                 continue;
@@ -432,7 +437,11 @@ pub fn window_size(sill: f64, wall_height: f64, wet: bool) -> [f64; 2] {
 /// Windows for every room that wants daylight: one per ~8 m of outside wall (1-3, one for a
 /// bathroom), on the longest outside stretches, away from the exterior door's side when
 /// possible.
-pub fn auto_windows(spec: &HouseSpec, placement: &Placement, doors: &[DoorSpec]) -> Vec<WindowSpec> {
+pub fn auto_windows(
+    spec: &HouseSpec,
+    placement: &Placement,
+    doors: &[DoorSpec],
+) -> Vec<WindowSpec> {
     let mut out = Vec::new();
     for r in spec.rooms.iter().filter(|r| r.windows) {
         let wet = r.role == Role::Wet;
@@ -444,7 +453,13 @@ pub fn auto_windows(spec: &HouseSpec, placement: &Placement, doors: &[DoorSpec])
             .collect();
         // Room for the window, and for the exterior door too on the door's side.
         let need = |iv: &Interval| {
-            width + 0.6 + if door_sides.contains(&iv.side) { EXTERIOR_DOOR_WIDTH + 0.8 } else { 0.0 }
+            width
+                + 0.6
+                + if door_sides.contains(&iv.side) {
+                    EXTERIOR_DOOR_WIDTH + 0.8
+                } else {
+                    0.0
+                }
         };
         let mut ext: Vec<Interval> = intervals(placement, &r.id)
             .into_iter()

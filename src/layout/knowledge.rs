@@ -181,11 +181,15 @@ pub fn room_words() -> &'static [(Vec<String>, String)] {
 /// The material table name a word means ("hardwood" -> `oak`), if any.
 pub fn material_word(word: &str) -> Option<&'static str> {
     let w = word.trim().to_lowercase();
-    knowledge().materials.get(&w).map(String::as_str).or_else(|| {
-        crate::assets::material::names()
-            .into_iter()
-            .find(|n| *n == w)
-    })
+    knowledge()
+        .materials
+        .get(&w)
+        .map(String::as_str)
+        .or_else(|| {
+            crate::assets::material::names()
+                .into_iter()
+                .find(|n| *n == w)
+        })
 }
 
 #[cfg(test)]
@@ -195,7 +199,11 @@ mod tests {
     #[test]
     fn table_loads_and_is_consistent() {
         let k = knowledge();
-        assert!(k.room_types.len() >= 40, "{} room types", k.room_types.len());
+        assert!(
+            k.room_types.len() >= 40,
+            "{} room types",
+            k.room_types.len()
+        );
         for (key, r) in &k.room_types {
             assert!(r.size[0] >= r.size[1], "{key}: size is [long, short]");
             assert!(r.min_side <= r.size[1], "{key}: min side above the prior");

@@ -150,7 +150,9 @@ impl Placement {
     /// Total cell area over bounding-box area (1 for a perfect rectangle).
     pub fn compactness(&self) -> f64 {
         match self.bounds() {
-            Some(b) if b.area() > 0.0 => self.cells.values().map(Rect::area).sum::<f64>() / b.area(),
+            Some(b) if b.area() > 0.0 => {
+                self.cells.values().map(Rect::area).sum::<f64>() / b.area()
+            }
             _ => 0.0,
         }
     }
@@ -245,33 +247,49 @@ impl Outside {
         for j in 0..ny {
             for i in 0..nx {
                 let c = [(xs[i] + xs[i + 1]) / 2.0, (ys[j] + ys[j + 1]) / 2.0];
-                if p.cells.values().any(|r| r.x0 < c[0] && c[0] < r.x1 && r.y0 < c[1] && c[1] < r.y1) {
+                if p.cells
+                    .values()
+                    .any(|r| r.x0 < c[0] && c[0] < r.x1 && r.y0 < c[1] && c[1] < r.y1)
+                {
                     state[j * nx + i] = 0;
                 }
             }
         }
         // Flood the empty cells connected to the border.
-        let mut stack: Vec<usize> = (0..state.len()).filter(|&k| {
-            let (i, j) = (k % nx, k / nx);
-            (i == 0 || j == 0 || i + 1 == nx || j + 1 == ny) && state[k] == 2
-        }).collect();
+        let mut stack: Vec<usize> = (0..state.len())
+            .filter(|&k| {
+                let (i, j) = (k % nx, k / nx);
+                (i == 0 || j == 0 || i + 1 == nx || j + 1 == ny) && state[k] == 2
+            })
+            .collect();
         while let Some(k) = stack.pop() {
             if state[k] != 2 {
                 continue;
             }
             state[k] = 1;
             let (i, j) = (k % nx, k / nx);
-            if i > 0 { stack.push(k - 1); }
-            if i + 1 < nx { stack.push(k + 1); }
-            if j > 0 { stack.push(k - nx); }
-            if j + 1 < ny { stack.push(k + nx); }
+            if i > 0 {
+                stack.push(k - 1);
+            }
+            if i + 1 < nx {
+                stack.push(k + 1);
+            }
+            if j > 0 {
+                stack.push(k - nx);
+            }
+            if j + 1 < ny {
+                stack.push(k + nx);
+            }
         }
         Outside { xs, ys, state }
     }
 
     /// Whether a point is empty and connected to the far outside.
     pub fn is_open(&self, p: [f64; 2]) -> bool {
-        let (nx, ny) = (self.xs.len().saturating_sub(1), self.ys.len().saturating_sub(1));
+        let (nx, ny) = (
+            self.xs.len().saturating_sub(1),
+            self.ys.len().saturating_sub(1),
+        );
         let find = |v: &[f64], x: f64| -> Option<usize> {
             if v.len() < 2 || x <= v[0] || x >= v[v.len() - 1] {
                 return None;
@@ -432,7 +450,11 @@ impl Tables {
         let mut is_parent = vec![vec![false; n]; n];
         let mut link = vec![vec![None; n]; n];
         for (k, &i) in order.iter().enumerate() {
-            parents[k] = spec.rooms[i].parents.iter().filter_map(|p| pos(p)).collect();
+            parents[k] = spec.rooms[i]
+                .parents
+                .iter()
+                .filter_map(|p| pos(p))
+                .collect();
             for &p in &parents[k] {
                 is_parent[k][p] = true;
                 is_parent[p][k] = true;
@@ -845,7 +867,9 @@ mod tests {
                 continue;
             }
             assert!(
-                r.parents.iter().any(|q| p.shared(&r.id, q) >= MIN_SHARED - 1e-9),
+                r.parents
+                    .iter()
+                    .any(|q| p.shared(&r.id, q) >= MIN_SHARED - 1e-9),
                 "{} is not next to any of {:?}",
                 r.id,
                 r.parents

@@ -315,7 +315,10 @@ pub fn house_spec(brief: &HouseBrief) -> HouseSpec {
         }
     }
     let wall_height = brief.wall_height.unwrap_or_else(|| {
-        if rooms.iter().any(|r| r.area() >= 30.0 && r.role != Role::Hub) {
+        if rooms
+            .iter()
+            .any(|r| r.area() >= 30.0 && r.role != Role::Hub)
+        {
             TALL_WALL_HEIGHT
         } else {
             WALL_HEIGHT
@@ -354,7 +357,12 @@ pub fn connect(spec: &mut HouseSpec) {
     let living = spec
         .rooms
         .iter()
-        .find(|r| matches!(r.room_type.as_str(), "living_room" | "studio" | "living_kitchen"))
+        .find(|r| {
+            matches!(
+                r.room_type.as_str(),
+                "living_room" | "studio" | "living_kitchen"
+            )
+        })
         .map(|r| r.id.clone());
     spec.entrance = entries
         .first()
@@ -362,7 +370,11 @@ pub fn connect(spec: &mut HouseSpec) {
         .or(living.as_ref())
         .or(publics.first())
         .cloned()
-        .or_else(|| by_role(spec, &[Role::Private, Role::Wet, Role::Service]).first().cloned())
+        .or_else(|| {
+            by_role(spec, &[Role::Private, Role::Wet, Role::Service])
+                .first()
+                .cloned()
+        })
         .unwrap_or_default();
 
     // Rule adjacencies (kitchen next to the dining room, ...).
@@ -460,14 +472,24 @@ mod tests {
     #[test]
     fn content_sizes_rooms_for_what_they_hold() {
         let bare = house_spec(&brief::read("A closet."));
-        let full = house_spec(&brief::read("A closet with twelve shelves along the walls."));
+        let full = house_spec(&brief::read(
+            "A closet with twelve shelves along the walls.",
+        ));
         let (a, b) = (&bare.rooms[0], &full.rooms[0]);
         assert!(b.area() > a.area(), "{:?} vs {:?}", b.size, a.size);
         // Twelve shelf units stand along the walls, with a door left over.
-        assert!(2.0 * (b.size[0] + b.size[1]) - 2.2 >= 12.0 * 1.0, "{:?}", b.size);
+        assert!(
+            2.0 * (b.size[0] + b.size[1]) - 2.2 >= 12.0 * 1.0,
+            "{:?}",
+            b.size
+        );
         // Small objects that overflow the planned shelves ask for more shelving.
         let one = content_needs(&room_plan("pantry", "A pantry with a cabinet.", false));
-        let many = content_needs(&room_plan("pantry", "A pantry with a cabinet holding 60 mugs.", false));
+        let many = content_needs(&room_plan(
+            "pantry",
+            "A pantry with a cabinet holding 60 mugs.",
+            false,
+        ));
         assert!(many.wall_m > one.wall_m + 0.9, "{one:?} {many:?}");
         // The pottery store of the issue is no 3 x 3 m box.
         let store = house_spec(&brief::read(

@@ -33,12 +33,7 @@ pub struct LayoutOutcome {
 }
 
 fn brief(state: &LayoutState) -> String {
-    let rooms: Vec<String> = state
-        .brief
-        .rooms
-        .iter()
-        .map(|r| r.label.clone())
-        .collect();
+    let rooms: Vec<String> = state.brief.rooms.iter().map(|r| r.label.clone()).collect();
     format!(
         "Prompt: \"{}\". Rooms the prompt names: {}. An initial layout was generated from the \
          prompt; inspect it (observe_scene, render_ascii, validate) and improve it, or call \

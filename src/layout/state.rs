@@ -84,8 +84,8 @@ impl LayoutState {
 
     /// Sets the spec and places it: from scratch, or keeping rooms near where they were.
     pub fn install(&mut self, spec: HouseSpec, keep_positions: bool) -> Vec<(String, f64)> {
-        let previous = (keep_positions && !self.placement.cells.is_empty())
-            .then(|| self.placement.clone());
+        let previous =
+            (keep_positions && !self.placement.cells.is_empty()).then(|| self.placement.clone());
         let (placement, stats) = search::place(&spec, previous.as_ref(), &self.config);
         let moved = previous
             .as_ref()
@@ -96,7 +96,10 @@ impl LayoutState {
                     .filter_map(|(k, r)| {
                         prev.cells.get(k).map(|p| {
                             let (a, b) = (r.center(), p.center());
-                            (k.clone(), ((a[0] - b[0]).hypot(a[1] - b[1]) * 1000.0).round() / 1000.0)
+                            (
+                                k.clone(),
+                                ((a[0] - b[0]).hypot(a[1] - b[1]) * 1000.0).round() / 1000.0,
+                            )
                         })
                     })
                     .filter(|(_, d)| *d > 1e-3)
@@ -181,7 +184,10 @@ impl LayoutState {
                         let c = self.placement.cells.get(&r.id);
                         let t = self.config.wall_thickness;
                         let size = c.map(|c| [c.w() - t, c.d() - t]).unwrap_or(r.size);
-                        format!("{} ({}) {:.1} x {:.1} m", r.id, r.room_type, size[0], size[1])
+                        format!(
+                            "{} ({}) {:.1} x {:.1} m",
+                            r.id, r.room_type, size[0], size[1]
+                        )
                     })
                     .collect()
             })

@@ -128,7 +128,9 @@ fn generate_room_specs(s: &mut LayoutState, a: GenerateArgs) -> Result<LayoutSum
     if let Some(h) = a.wall_height_m
         && !(2.2..=6.0).contains(&h)
     {
-        return Err(ToolError::bad_args("wall_height_m must be between 2.2 and 6.0"));
+        return Err(ToolError::bad_args(
+            "wall_height_m must be between 2.2 and 6.0",
+        ));
     }
     let mut sizes: Vec<Option<[f64; 2]>> = Vec::new();
     if let Some(rooms) = a.rooms {
@@ -137,7 +139,9 @@ fn generate_room_specs(s: &mut LayoutState, a: GenerateArgs) -> Result<LayoutSum
         }
         let total: u32 = rooms.iter().map(|r| r.count.unwrap_or(1)).sum();
         if total == 0 || total > 30 {
-            return Err(ToolError::bad_args("the house must have between 1 and 30 rooms"));
+            return Err(ToolError::bad_args(
+                "the house must have between 1 and 30 rooms",
+            ));
         }
         let mut requests = Vec::new();
         for r in &rooms {
@@ -261,7 +265,11 @@ fn check_pair(s: &LayoutState, a: &PairArgs) -> Result<(), ToolError> {
     Ok(())
 }
 
-fn set_link(s: &mut LayoutState, a: &PairArgs, link: Option<Link>) -> Result<LayoutSummary, ToolError> {
+fn set_link(
+    s: &mut LayoutState,
+    a: &PairArgs,
+    link: Option<Link>,
+) -> Result<LayoutSummary, ToolError> {
     check_pair(s, a)?;
     let mut spec = s.spec().map_err(fail)?.clone();
     spec.adjacency.retain(|p| !p.joins(&a.room_a, &a.room_b));
@@ -305,9 +313,10 @@ fn remove_adjacency(s: &mut LayoutState, a: PairArgs) -> Result<LayoutSummary, T
 fn add_open_connection(s: &mut LayoutState, a: PairArgs) -> Result<LayoutSummary, ToolError> {
     check_pair(s, &a)?;
     let spec = s.spec().map_err(fail)?;
-    let wet = [&a.room_a, &a.room_b]
-        .iter()
-        .any(|id| spec.room(id).is_some_and(|r| matches!(r.role, Role::Wet | Role::Service)));
+    let wet = [&a.room_a, &a.room_b].iter().any(|id| {
+        spec.room(id)
+            .is_some_and(|r| matches!(r.role, Role::Wet | Role::Service))
+    });
     if wet {
         return Err(fail(
             "bathrooms, storage and technical rooms keep their walls; connect them with a door",
@@ -378,14 +387,19 @@ pub struct Added {
 
 fn add_door(s: &mut LayoutState, a: DoorArgs) -> Result<Added, ToolError> {
     room_exists(s, &a.room_a)?;
-    let outside = matches!(a.room_b.trim().to_lowercase().as_str(), "outside" | "exterior" | "none");
+    let outside = matches!(
+        a.room_b.trim().to_lowercase().as_str(),
+        "outside" | "exterior" | "none"
+    );
     let width = a.width_m.unwrap_or(if outside { 1.0 } else { 0.9 });
     if !(0.7..=2.0).contains(&width) {
         return Err(ToolError::bad_args("width_m must be between 0.7 and 2.0"));
     }
     let side = match &a.side {
         Some(x) => Some(Side::parse(x).ok_or_else(|| {
-            ToolError::bad_args(format!("unknown side {x:?}; use north, east, south or west"))
+            ToolError::bad_args(format!(
+                "unknown side {x:?}; use north, east, south or west"
+            ))
         })?),
         None => None,
     };
@@ -403,7 +417,8 @@ fn add_door(s: &mut LayoutState, a: DoorArgs) -> Result<Added, ToolError> {
                 fail(format!(
                     "{} has no outside wall{} long enough for a {width:.2} m door",
                     a.room_a,
-                    side.map(|s| format!(" on the {} side", s.as_str())).unwrap_or_default()
+                    side.map(|s| format!(" on the {} side", s.as_str()))
+                        .unwrap_or_default()
                 ))
             })?;
         (None, Some(best.side))
@@ -431,7 +446,10 @@ fn add_door(s: &mut LayoutState, a: DoorArgs) -> Result<Added, ToolError> {
         }
         (Some(a.room_b.clone()), None)
     };
-    if s.doors.iter().any(|d| d.joins(&a.room_a, b.as_deref()) && b.is_some()) {
+    if s.doors
+        .iter()
+        .any(|d| d.joins(&a.room_a, b.as_deref()) && b.is_some())
+    {
         return Err(fail(format!(
             "{} and {} already have a door",
             a.room_a, a.room_b
@@ -453,7 +471,10 @@ fn add_door(s: &mut LayoutState, a: DoorArgs) -> Result<Added, ToolError> {
         s.doors.retain(|d| d.id != id);
         return Err(fail(n));
     }
-    Ok(Added { notes: Vec::new(), id })
+    Ok(Added {
+        notes: Vec::new(),
+        id,
+    })
 }
 
 /// An id.
@@ -470,7 +491,11 @@ fn remove_door(s: &mut LayoutState, a: IdArgs) -> Result<LayoutSummary, ToolErro
         return Err(ToolError::bad_args(format!(
             "no door {:?}; doors: {}",
             a.id,
-            s.doors.iter().map(|d| d.id.as_str()).collect::<Vec<_>>().join(", ")
+            s.doors
+                .iter()
+                .map(|d| d.id.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
         )));
     }
     Ok(s.summary(Vec::new()))
@@ -506,7 +531,10 @@ fn add_window(s: &mut LayoutState, a: WindowArgs) -> Result<Added, ToolError> {
     let width = a.width_m.unwrap_or(dw);
     let sill = a.sill_m.unwrap_or(r.sill);
     let height = a.height_m.unwrap_or(dh);
-    if !(0.4..=4.0).contains(&width) || !(0.0..=2.0).contains(&sill) || !(0.3..=3.0).contains(&height) {
+    if !(0.4..=4.0).contains(&width)
+        || !(0.0..=2.0).contains(&sill)
+        || !(0.3..=3.0).contains(&height)
+    {
         return Err(ToolError::bad_args(
             "width_m 0.4-4.0, sill_m 0-2.0, height_m 0.3-3.0",
         ));
@@ -519,7 +547,9 @@ fn add_window(s: &mut LayoutState, a: WindowArgs) -> Result<Added, ToolError> {
     }
     let want = match &a.side {
         Some(x) => Some(Side::parse(x).ok_or_else(|| {
-            ToolError::bad_args(format!("unknown side {x:?}; use north, east, south or west"))
+            ToolError::bad_args(format!(
+                "unknown side {x:?}; use north, east, south or west"
+            ))
         })?),
         None => None,
     };
@@ -532,7 +562,8 @@ fn add_window(s: &mut LayoutState, a: WindowArgs) -> Result<Added, ToolError> {
             fail(format!(
                 "{} has no outside wall{} long enough for a {width:.2} m window",
                 a.room,
-                want.map(|s| format!(" on the {} side", s.as_str())).unwrap_or_default()
+                want.map(|s| format!(" on the {} side", s.as_str()))
+                    .unwrap_or_default()
             ))
         })?;
     let cell = s.placement.cells[&a.room];
@@ -559,7 +590,10 @@ fn add_window(s: &mut LayoutState, a: WindowArgs) -> Result<Added, ToolError> {
         s.windows.retain(|w| w.id != id);
         return Err(fail(n));
     }
-    Ok(Added { notes: Vec::new(), id })
+    Ok(Added {
+        notes: Vec::new(),
+        id,
+    })
 }
 
 fn remove_window(s: &mut LayoutState, a: IdArgs) -> Result<LayoutSummary, ToolError> {
@@ -578,7 +612,10 @@ pub struct MaterialArgs {
     pub description: String,
 }
 
-fn get_material(_: &mut LayoutState, a: MaterialArgs) -> Result<materials::MaterialInfo, ToolError> {
+fn get_material(
+    _: &mut LayoutState,
+    a: MaterialArgs,
+) -> Result<materials::MaterialInfo, ToolError> {
     materials::lookup(&a.description).ok_or_else(|| {
         fail(format!(
             "no material matches {:?}; known: {}",
@@ -601,7 +638,10 @@ pub struct SetMaterialsArgs {
     pub wall: Option<String>,
 }
 
-fn set_room_materials(s: &mut LayoutState, a: SetMaterialsArgs) -> Result<LayoutSummary, ToolError> {
+fn set_room_materials(
+    s: &mut LayoutState,
+    a: SetMaterialsArgs,
+) -> Result<LayoutSummary, ToolError> {
     let resolve = |d: &Option<String>| -> Result<Option<String>, ToolError> {
         match d {
             None => Ok(None),
@@ -736,7 +776,12 @@ pub fn observe(s: &LayoutState) -> Result<LayoutObservation, ToolError> {
         let cell = s.placement.cells.get(&r.id).copied();
         let built = rooms.iter().find(|x| x.id == r.id);
         let openings = built
-            .map(|b| b.walls.iter().flat_map(|w| w.openings.iter().map(move |o| (w, o))).collect::<Vec<_>>())
+            .map(|b| {
+                b.walls
+                    .iter()
+                    .flat_map(|w| w.openings.iter().map(move |o| (w, o)))
+                    .collect::<Vec<_>>()
+            })
             .unwrap_or_default();
         let neighbors = s
             .placement
@@ -751,9 +796,15 @@ pub fn observe(s: &LayoutState) -> Result<LayoutObservation, ToolError> {
             room_type: r.room_type.clone(),
             label: r.label.clone(),
             role: r.role.as_str().to_string(),
-            origin_m: cell.map(|c| [round2(c.x0 + t / 2.0), round2(c.y0 + t / 2.0)]).unwrap_or_default(),
-            size_m: cell.map(|c| [round2(c.w() - t), round2(c.d() - t)]).unwrap_or(r.size),
-            area_m2: cell.map(|c| round2((c.w() - t) * (c.d() - t))).unwrap_or(r.area()),
+            origin_m: cell
+                .map(|c| [round2(c.x0 + t / 2.0), round2(c.y0 + t / 2.0)])
+                .unwrap_or_default(),
+            size_m: cell
+                .map(|c| [round2(c.w() - t), round2(c.d() - t)])
+                .unwrap_or(r.size),
+            area_m2: cell
+                .map(|c| round2((c.w() - t) * (c.d() - t)))
+                .unwrap_or(r.area()),
             floor: r.floor_material.clone(),
             wall: r.wall_material.clone(),
             neighbors,
@@ -764,7 +815,10 @@ pub fn observe(s: &LayoutState) -> Result<LayoutObservation, ToolError> {
                 .filter(|(_, o)| o.kind == OpeningKind::Door)
                 .map(|(w, o)| format!("{} -> {}", o.id, w.neighbor.as_deref().unwrap_or("outside")))
                 .collect(),
-            windows: openings.iter().filter(|(_, o)| o.kind == OpeningKind::Window).count(),
+            windows: openings
+                .iter()
+                .filter(|(_, o)| o.kind == OpeningKind::Window)
+                .count(),
             wants_windows: r.windows,
             prompt: r.prompt.clone(),
         });
@@ -781,7 +835,11 @@ pub fn observe(s: &LayoutState) -> Result<LayoutObservation, ToolError> {
         }
     }
     for q in &mut requested {
-        q.present = spec.rooms.iter().filter(|r| r.room_type == q.room_type).count();
+        q.present = spec
+            .rooms
+            .iter()
+            .filter(|r| r.room_type == q.room_type)
+            .count();
     }
     let requested_materials = s
         .brief
@@ -790,9 +848,13 @@ pub fn observe(s: &LayoutState) -> Result<LayoutObservation, ToolError> {
         .enumerate()
         .filter(|(_, r)| r.floor_material.is_some() || r.wall_material.is_some())
         .filter_map(|(i, r)| {
-            spec.rooms
-                .get(i)
-                .map(|x| (x.id.clone(), r.floor_material.clone(), r.wall_material.clone()))
+            spec.rooms.get(i).map(|x| {
+                (
+                    x.id.clone(),
+                    r.floor_material.clone(),
+                    r.wall_material.clone(),
+                )
+            })
         })
         .collect();
     Ok(LayoutObservation {
@@ -830,16 +892,51 @@ pub fn toolbox() -> Toolbox<LayoutState> {
     t.add("generate_room_specs", "Create the rooms and place them: from the prompt when `rooms` is omitted, or from the given list (room types, counts, optional sizes and contents, en-suites). Replaces the current layout.", Access::Modify, generate_room_specs);
     t.add("resize_room", "Set a room's clear size (metres) and re-place the house, keeping the other rooms where they were as far as possible.", Access::Modify, resize_room);
     t.add("add_adjacency", "Require two rooms to share a wall long enough for a door (re-places the house if they do not yet).", Access::Modify, add_adjacency);
-    t.add("remove_adjacency", "Drop the requirement that two rooms share a wall.", Access::Modify, remove_adjacency);
+    t.add(
+        "remove_adjacency",
+        "Drop the requirement that two rooms share a wall.",
+        Access::Modify,
+        remove_adjacency,
+    );
     t.add("add_open_connection", "Remove the wall between two rooms (open plan); they are moved together if needed. Not for bathrooms or storage.", Access::Modify, add_open_connection);
-    t.add("remove_open_connection", "Put the wall back between two openly connected rooms (with a door).", Access::Modify, remove_open_connection);
-    t.add("set_wall_height", "Set the floor-to-ceiling height of every room, metres.", Access::Modify, set_wall_height);
+    t.add(
+        "remove_open_connection",
+        "Put the wall back between two openly connected rooms (with a door).",
+        Access::Modify,
+        remove_open_connection,
+    );
+    t.add(
+        "set_wall_height",
+        "Set the floor-to-ceiling height of every room, metres.",
+        Access::Modify,
+        set_wall_height,
+    );
     t.add("add_door", "Add a door between two rooms that share a wall (left, center or right along it), or an exterior door (room_b = \"outside\").", Access::Modify, add_door);
-    t.add("remove_door", "Remove a door by id.", Access::Modify, remove_door);
-    t.add("add_window", "Add a window to an outside wall of a room (side, width, sill height).", Access::Modify, add_window);
-    t.add("remove_window", "Remove a window by id.", Access::Modify, remove_window);
+    t.add(
+        "remove_door",
+        "Remove a door by id.",
+        Access::Modify,
+        remove_door,
+    );
+    t.add(
+        "add_window",
+        "Add a window to an outside wall of a room (side, width, sill height).",
+        Access::Modify,
+        add_window,
+    );
+    t.add(
+        "remove_window",
+        "Remove a window by id.",
+        Access::Modify,
+        remove_window,
+    );
     t.add("get_material", "Find the material table entry for words such as \"light hardwood\" or \"polished concrete\": name, colour, friction.", Access::Observe, get_material);
-    t.add("set_room_materials", "Set the floor and/or wall material of a room (or \"all\" rooms).", Access::Modify, set_room_materials);
+    t.add(
+        "set_room_materials",
+        "Set the floor and/or wall material of a room (or \"all\" rooms).",
+        Access::Modify,
+        set_room_materials,
+    );
     t.add("validate", "Check the layout: every room reachable from the exterior door, en-suites only through their bedroom, no room only through a bathroom, required neighbours, overlaps, doors and windows that fit.", Access::Verify, validate);
     t.add("render_ascii", "The floor plan as text: walls, doors (D, E outside), windows (W), open connections (.), room ids and sizes, and every wall segment with its openings.", Access::Observe, render_ascii);
     t.add("observe_scene", "Every room with position, size, role, neighbours, doors, windows, materials and its prompt; requested rooms vs present; search statistics; validation errors.", Access::Observe, observe_scene);
@@ -858,16 +955,32 @@ mod tests {
     fn tool_names_are_the_ones_the_design_uses() {
         let t = toolbox();
         for name in [
-            "generate_room_specs", "resize_room", "add_adjacency", "remove_adjacency",
-            "add_open_connection", "remove_open_connection", "set_wall_height", "add_door",
-            "remove_door", "add_window", "remove_window", "get_material", "set_room_materials",
-            "validate", "render_ascii", "observe_scene",
+            "generate_room_specs",
+            "resize_room",
+            "add_adjacency",
+            "remove_adjacency",
+            "add_open_connection",
+            "remove_open_connection",
+            "set_wall_height",
+            "add_door",
+            "remove_door",
+            "add_window",
+            "remove_window",
+            "get_material",
+            "set_room_materials",
+            "validate",
+            "render_ascii",
+            "observe_scene",
         ] {
             assert!(t.spec(name).is_some(), "missing {name}");
         }
         assert_eq!(t.len(), 16);
         // The critic may look and verify, never edit.
-        let critic: Vec<&str> = t.specs_for(AgentRole::Critic).iter().map(|s| s.name.as_str()).collect();
+        let critic: Vec<&str> = t
+            .specs_for(AgentRole::Critic)
+            .iter()
+            .map(|s| s.name.as_str())
+            .collect();
         assert!(critic.contains(&"validate") && !critic.contains(&"resize_room"));
     }
 
@@ -877,7 +990,14 @@ mod tests {
         let mut s = LayoutState::new(FLAT, 1);
         let d = AgentRole::Designer;
         // Nothing generated yet: a clear error.
-        let e = t.call(&mut s, d, "resize_room", json!({"room": "x", "width_m": 3, "depth_m": 3})).unwrap_err();
+        let e = t
+            .call(
+                &mut s,
+                d,
+                "resize_room",
+                json!({"room": "x", "width_m": 3, "depth_m": 3}),
+            )
+            .unwrap_err();
         assert!(e.message.contains("generate_room_specs"), "{e:?}");
         t.call(&mut s, d, "generate_room_specs", json!({})).unwrap();
         let v = t.call(&mut s, d, "validate", json!({})).unwrap();
@@ -885,24 +1005,73 @@ mod tests {
         let obs = t.call(&mut s, d, "observe_scene", json!({})).unwrap();
         assert_eq!(obs["rooms"].as_array().unwrap().len(), 5);
         // Open plan between the living room and the hallway.
-        t.call(&mut s, d, "add_open_connection", json!({"room_a": "living_room_0", "room_b": "hallway_0"})).unwrap();
+        t.call(
+            &mut s,
+            d,
+            "add_open_connection",
+            json!({"room_a": "living_room_0", "room_b": "hallway_0"}),
+        )
+        .unwrap();
         let (rooms, _) = s.rooms();
-        assert!(rooms.iter().flat_map(|r| &r.walls).flat_map(|w| &w.openings).any(|o| o.kind == OpeningKind::Open));
+        assert!(
+            rooms
+                .iter()
+                .flat_map(|r| &r.walls)
+                .flat_map(|w| &w.openings)
+                .any(|o| o.kind == OpeningKind::Open)
+        );
         // Bathrooms keep their walls.
-        let e = t.call(&mut s, d, "add_open_connection", json!({"room_a": "bathroom_0", "room_b": "hallway_0"})).unwrap_err();
+        let e = t
+            .call(
+                &mut s,
+                d,
+                "add_open_connection",
+                json!({"room_a": "bathroom_0", "room_b": "hallway_0"}),
+            )
+            .unwrap_err();
         assert_eq!(e.kind, crate::agents::ToolErrorKind::Failed);
         // Materials by words.
-        t.call(&mut s, d, "set_room_materials", json!({"room": "living_room_0", "floor": "polished concrete"})).unwrap();
-        assert_eq!(s.spec.as_ref().unwrap().room("living_room_0").unwrap().floor_material, "concrete");
+        t.call(
+            &mut s,
+            d,
+            "set_room_materials",
+            json!({"room": "living_room_0", "floor": "polished concrete"}),
+        )
+        .unwrap();
+        assert_eq!(
+            s.spec
+                .as_ref()
+                .unwrap()
+                .room("living_room_0")
+                .unwrap()
+                .floor_material,
+            "concrete"
+        );
         // Windows and doors: add and remove.
-        let w = t.call(&mut s, d, "add_window", json!({"room": "living_room_0"})).unwrap();
+        let w = t
+            .call(&mut s, d, "add_window", json!({"room": "living_room_0"}))
+            .unwrap();
         let id = w["id"].as_str().unwrap().to_string();
-        t.call(&mut s, d, "remove_window", json!({"id": id})).unwrap();
-        let e = t.call(&mut s, d, "add_door", json!({"room_a": "bathroom_0", "room_b": "nowhere"})).unwrap_err();
+        t.call(&mut s, d, "remove_window", json!({"id": id}))
+            .unwrap();
+        let e = t
+            .call(
+                &mut s,
+                d,
+                "add_door",
+                json!({"room_a": "bathroom_0", "room_b": "nowhere"}),
+            )
+            .unwrap_err();
         assert_eq!(e.kind, crate::agents::ToolErrorKind::BadArguments);
         let text = t.call(&mut s, d, "render_ascii", json!({})).unwrap();
         assert!(text["text"].as_str().unwrap().contains("living_room_0"));
-        t.call(&mut s, d, "set_wall_height", json!({"height_m": 3.0})).unwrap();
-        assert!(s.rooms().0.iter().all(|r| (r.wall_height - 3.0).abs() < 1e-12));
+        t.call(&mut s, d, "set_wall_height", json!({"height_m": 3.0}))
+            .unwrap();
+        assert!(
+            s.rooms()
+                .0
+                .iter()
+                .all(|r| (r.wall_height - 3.0).abs() < 1e-12)
+        );
     }
 }

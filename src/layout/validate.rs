@@ -76,14 +76,19 @@ pub struct Validation {
     pub unreachable: Vec<String>,
     /// Rooms that can only be reached by walking through a bathroom.
     pub only_through_bathroom: Vec<String>,
-    /// Rooms reached only through another room that is not a corridor or hallway.
+    /// Rooms reached only through another room that is not a corridor, hallway or entrance.
     pub only_through_room: Vec<String>,
     /// Exterior doors.
     pub exterior_doors: usize,
 }
 
 /// Validates built rooms against their spec and placement.
-pub fn validate(spec: &HouseSpec, placement: &Placement, rooms: &[Room], notes: &[String]) -> Validation {
+pub fn validate(
+    spec: &HouseSpec,
+    placement: &Placement,
+    rooms: &[Room],
+    notes: &[String],
+) -> Validation {
     let mut v = Validation::default();
     let g = door_graph(rooms);
     v.exterior_doors = g.get(OUTSIDE).map(|s| s.len()).unwrap_or(0);
@@ -138,15 +143,17 @@ pub fn validate(spec: &HouseSpec, placement: &Placement, rooms: &[Room], notes: 
             v.only_through_bathroom.join(", ")
         ));
     }
-    // Rooms reached only through a room that is not a hub (the benchmark's flow measure).
+    // Rooms reached only through a room that is neither a hub nor an entrance (one with an
+    // exterior door): the benchmark's flow measure.
+    let entrances: BTreeSet<String> = g.get(OUTSIDE).cloned().unwrap_or_default();
     for r in &spec.rooms {
-        if !all.contains(&r.id) || g.get(&r.id).is_some_and(|n| n.contains(OUTSIDE)) {
+        if !all.contains(&r.id) || entrances.contains(&r.id) {
             continue;
         }
         let blocked: BTreeSet<String> = spec
             .rooms
             .iter()
-            .filter(|o| o.id != r.id && o.role != Role::Hub)
+            .filter(|o| o.id != r.id && o.role != Role::Hub && !entrances.contains(&o.id))
             .map(|o| o.id.clone())
             .collect();
         if !reachable_from_outside(&g, &blocked).contains(&r.id) {
@@ -182,8 +189,10 @@ pub fn validate(spec: &HouseSpec, placement: &Placement, rooms: &[Room], notes: 
                         .any(|w| w.openings.iter().any(|o| o.kind == OpeningKind::Window))
             })
         {
-            v.warnings
-                .push(format!("{} has no window (no outside wall free for one)", r.id));
+            v.warnings.push(format!(
+                "{} has no window (no outside wall free for one)",
+                r.id
+            ));
         }
     }
     v.warnings.extend(notes.iter().cloned());

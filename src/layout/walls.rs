@@ -152,8 +152,7 @@ pub fn build_rooms(
                 .filter(|&i| mine[i].outside && mine[i].side == w.side)
                 .collect();
             order.sort_by(|&a, &b| {
-                axis_distance(&mine[a], want_axis)
-                    .total_cmp(&axis_distance(&mine[b], want_axis))
+                axis_distance(&mine[a], want_axis).total_cmp(&axis_distance(&mine[b], want_axis))
             });
             for i in order {
                 let p = &mut mine[i];
@@ -200,7 +199,11 @@ pub fn build_rooms(
         .rooms
         .iter()
         .zip(&pieces)
-        .map(|(r, ps)| (0..ps.len()).map(|k| format!("{}_wall_{k}", r.id)).collect())
+        .map(|(r, ps)| {
+            (0..ps.len())
+                .map(|k| format!("{}_wall_{k}", r.id))
+                .collect()
+        })
         .collect();
     let mut rooms = Vec::new();
     for (ri, r) in spec.rooms.iter().enumerate() {
@@ -236,7 +239,12 @@ pub fn build_rooms(
         // Longest piece of each side first, so "the north wall" means the main one.
         walls.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.length().total_cmp(&a.1.length())));
         let half = t / 2.0;
-        let (x0, y0, x1, y1) = (cell.x0 + half, cell.y0 + half, cell.x1 - half, cell.y1 - half);
+        let (x0, y0, x1, y1) = (
+            cell.x0 + half,
+            cell.y0 + half,
+            cell.x1 - half,
+            cell.y1 - half,
+        );
         rooms.push(Room {
             id: r.id.clone(),
             room_type: r.room_type.clone(),
@@ -283,14 +291,17 @@ fn axis_distance(p: &Piece, axis: f64) -> f64 {
 
 /// Centre for a window of `width` near `want` on a wall of `len` that avoids `taken`.
 fn fit_window(len: f64, t: f64, width: f64, want: f64, taken: &[Opening]) -> Option<f64> {
-    let (lo, hi) = (t / 2.0 + END_GAP + width / 2.0, len - t / 2.0 - END_GAP - width / 2.0);
+    let (lo, hi) = (
+        t / 2.0 + END_GAP + width / 2.0,
+        len - t / 2.0 - END_GAP - width / 2.0,
+    );
     if hi < lo {
         return None;
     }
     let free = |c: f64| {
-        taken.iter().all(|o| {
-            (c - o.center).abs() >= (o.width + width) / 2.0 + OPENING_GAP
-        })
+        taken
+            .iter()
+            .all(|o| (c - o.center).abs() >= (o.width + width) / 2.0 + OPENING_GAP)
     };
     let start = want.clamp(lo, hi);
     // Scan outwards from the wanted centre in 5 cm steps.
@@ -345,7 +356,11 @@ mod tests {
                 .collect();
             assert_eq!(twins.len(), 1, "{} has no twin", w.id);
             // Exactly one of the two is built.
-            assert!(w.mirror_of.is_some() != twins[0].mirror_of.is_some(), "{}", w.id);
+            assert!(
+                w.mirror_of.is_some() != twins[0].mirror_of.is_some(),
+                "{}",
+                w.id
+            );
             // The same doors, mirrored.
             for o in &w.openings {
                 let m = twins[0].openings.iter().find(|x| x.id == o.id).unwrap();
