@@ -242,7 +242,7 @@ fn mentions(toks: &[Tok]) -> Vec<Mention> {
                 room_type: ty.clone(),
                 first: i,
                 last: i + n - 1,
-                plural: *last != words[n - 1] || (sing != *last && *last != words[n - 1]),
+                plural: *last != words[n - 1],
                 label,
             });
             break;
@@ -766,7 +766,7 @@ fn attribute(
     let toks = &clause.toks;
     let body = text[clause.start..clause.end]
         .trim()
-        .trim_start_matches(|c: char| c == ',' || c == ';')
+        .trim_start_matches([',', ';'])
         .trim();
     let body = body
         .strip_prefix("and ")

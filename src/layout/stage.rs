@@ -32,6 +32,12 @@ pub struct LayoutOutcome {
     pub summary: StageSummary,
 }
 
+type Agents = (
+    Box<dyn Designer<LayoutState>>,
+    Box<dyn Critic<LayoutState>>,
+    Box<dyn Orchestrator>,
+);
+
 fn brief(state: &LayoutState) -> String {
     let rooms: Vec<String> = state.brief.rooms.iter().map(|r| r.label.clone()).collect();
     format!(
@@ -59,11 +65,7 @@ pub fn run_layout(
     let text = brief(&initial);
     let toolbox = tools::toolbox();
     let categories = tools::categories();
-    let (mut designer, mut critic, mut orchestrator): (
-        Box<dyn Designer<LayoutState>>,
-        Box<dyn Critic<LayoutState>>,
-        Box<dyn Orchestrator>,
-    ) = match backend {
+    let (mut designer, mut critic, mut orchestrator): Agents = match backend {
         Backend::Builtin => (
             Box::new(BuiltinLayoutDesigner),
             Box::new(BuiltinLayoutCritic),
