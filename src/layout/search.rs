@@ -348,7 +348,8 @@ pub struct SearchStats {
     pub nodes: usize,
     /// Complete layouts scored.
     pub leaves: usize,
-    /// Wall time, seconds.
+    /// Wall time, seconds (not serialised: logs and scenes stay byte-identical across runs).
+    #[serde(skip)]
     pub seconds: f64,
     /// The wall-clock limit cut the search short.
     pub timed_out: bool,
