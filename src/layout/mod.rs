@@ -4,7 +4,7 @@
 //!
 //! The data flows: [`brief`] reads the prompt into rooms (counts, en-suites, the sentences about
 //! each room), [`spec`] sizes them (type priors, size words, contents) and decides who may be
-//! entered from whom, [`search`] places them edge to edge, [`connect`] plans doors and windows,
+//! entered from whom, [`search`] places them edge to edge as [`cells`], [`connect`] plans doors and windows,
 //! [`walls`] builds the scene rooms, [`validate`] checks them, [`architecture`] turns a room
 //! into its static asset. [`state`], [`tools`], [`builtin`] and [`stage`] run all of it as an
 //! agent-loop stage; [`ascii`] draws a text floor plan. Furnishing the rooms is not done here.
@@ -13,6 +13,7 @@ pub mod architecture;
 pub mod ascii;
 pub mod brief;
 pub mod builtin;
+pub mod cells;
 pub mod connect;
 pub mod knowledge;
 pub mod materials;
