@@ -2,12 +2,13 @@
 //! walls and floors with doors, windows and open connections, per-room materials and per-room
 //! prompts for the placement stages.
 //!
-//! The data flows: [`brief`] reads the prompt into rooms (counts, en-suites, the sentences about
-//! each room), [`spec`] sizes them (type priors, size words, contents) and decides who may be
-//! entered from whom, [`search`] places them edge to edge as [`cells`], [`connect`] plans doors and windows,
-//! [`walls`] builds the scene rooms, [`validate`] checks them, [`architecture`] turns a room
-//! into its static asset. [`state`], [`tools`], [`builtin`] and [`stage`] run all of it as an
-//! agent-loop stage; [`ascii`] draws a text floor plan. Furnishing the rooms is not done here.
+//! The data flows: [`brief`] reads the prompt into rooms (counts, en-suites, the sentences
+//! about each room), [`spec`] sizes them (type priors, size words, contents) and decides who
+//! may be entered from whom, [`search`] places them edge to edge as [`cells`], [`connect`]
+//! plans doors and windows, [`walls`] builds the scene rooms, [`validate`] checks them,
+//! [`architecture`] turns a room into its static asset. [`state`], [`tools`], [`builtin`] and
+//! [`stage`] run all of it as an agent-loop stage; [`ascii`] draws a text floor plan.
+//! Furnishing the rooms is not done here.
 
 pub mod architecture;
 pub mod ascii;
