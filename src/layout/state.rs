@@ -169,7 +169,16 @@ impl LayoutState {
             };
         };
         let (rooms, notes) = self.rooms();
-        validate::validate(spec, &self.placement, &rooms, &notes.notes)
+        let mut v = validate::validate(spec, &self.placement, &rooms, &notes.notes);
+        if self.brief.left_out > 0 {
+            v.warnings.push(format!(
+                "the prompt asks for {} more rooms than the layout makes (at most {} rooms, {} per phrase); they were left out",
+                self.brief.left_out,
+                brief::MAX_ROOMS,
+                brief::MAX_PER_MENTION
+            ));
+        }
+        v
     }
 
     /// A short account of the layout.

@@ -20,6 +20,11 @@ use words::{
     mentions, ordinal_before, sentences, size_before, size_word, tokens, wall_height_in,
 };
 
+/// Most rooms one phrase adds ("forty offices" gives 20).
+pub const MAX_PER_MENTION: usize = 20;
+/// Most rooms of a house; the rest of a longer list is left out (and reported).
+pub const MAX_ROOMS: usize = 40;
+
 /// One room the prompt asks for.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RoomRequest {
@@ -66,6 +71,10 @@ pub struct HouseBrief {
     pub floor_material: Option<String>,
     /// House-wide wall material.
     pub wall_material: Option<String>,
+    /// Rooms the prompt asks for beyond [`MAX_ROOMS`] (or [`MAX_PER_MENTION`] per phrase)
+    /// that were left out.
+    #[serde(default)]
+    pub left_out: usize,
 }
 
 /// Index of the room an object noun in `toks` belongs in, by the item table.
@@ -153,7 +162,9 @@ fn room_list(text: &str, s0: (usize, usize)) -> (usize, Vec<Listed>, Vec<Mention
             });
             continue;
         }
-        let count = count_before(&toks, m.first).unwrap_or(if m.plural { 2 } else { 1 });
+        let count = count_before(&toks, m.first)
+            .unwrap_or(if m.plural { 2 } else { 1 })
+            .min(MAX_PER_MENTION);
         if count == 0 {
             continue;
         }
@@ -197,12 +208,23 @@ pub fn read(prompt: &str) -> HouseBrief {
         open_pairs: Vec::new(),
         floor_material: None,
         wall_material: None,
+        left_out: 0,
     };
 
     let add =
         |brief: &mut HouseBrief, m: &Mention, count: usize, owner: Option<usize>, size: f64| {
             let first_index = brief.rooms.len();
-            for i in 0..count {
+            let room_left = MAX_ROOMS.saturating_sub(first_index);
+            brief.left_out += count.saturating_sub(room_left);
+            for i in 0..count.min(room_left) {
+                // An en-suite whose bedroom was left out is left out too.
+                let owner = match owner {
+                    Some(o) if o + i >= first_index => {
+                        brief.left_out += 1;
+                        continue;
+                    }
+                    o => o.map(|o| o + i),
+                };
                 brief.rooms.push(RoomRequest {
                     room_type: m.room_type.clone(),
                     label: if m.room_type == "en_suite" {
@@ -213,7 +235,7 @@ pub fn read(prompt: &str) -> HouseBrief {
                     ordinal: [i + 1, count],
                     text: Vec::new(),
                     size_scale: size,
-                    owner: owner.map(|o| o + i),
+                    owner,
                     floor_material: None,
                     wall_material: None,
                 });
@@ -522,6 +544,45 @@ fn capitalise(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        /// Any text reads into at least one room without panicking, and every sentence ends
+        /// up somewhere.
+        #[test]
+        fn any_text_reads(text in "\\PC{0,300}") {
+            let b = read(&text);
+            prop_assert!(!b.rooms.is_empty() && b.rooms.len() <= MAX_ROOMS);
+            for i in 0..b.rooms.len() {
+                let _ = b.room_prompt(i);
+            }
+        }
+
+        #[test]
+        fn house_like_text_reads(words in proptest::collection::vec(
+            prop_oneof!["a", "two", "the", "with", "and", "kitchen", "bedroom", "bathrooms",
+                "en-suite", "first", "its", "has", "corridor", ",", ".", "open to", "marble",
+                "floors", "3 m", "ceilings", "forty", "offices", "X-ray room"], 0..60)) {
+            let text = words.join(" ");
+            let b = read(&text);
+            prop_assert!(!b.rooms.is_empty() && b.rooms.len() <= MAX_ROOMS);
+            for r in &b.rooms {
+                if let Some(o) = r.owner {
+                    prop_assert!(o < b.rooms.len());
+                }
+            }
+            let spec = crate::layout::spec::house_spec(&b);
+            prop_assert_eq!(spec.rooms.len(), b.rooms.len());
+        }
+    }
+
+    #[test]
+    fn huge_houses_are_capped_and_say_so() {
+        let b = read("An office building with 40 offices, 30 meeting rooms and a corridor.");
+        assert_eq!(b.rooms.len(), MAX_ROOMS);
+        assert!(b.left_out > 0);
+    }
 
     fn types(b: &HouseBrief) -> Vec<&str> {
         b.rooms.iter().map(|r| r.room_type.as_str()).collect()
