@@ -98,6 +98,9 @@ pub struct Knowledge {
     pub room_types: BTreeMap<String, RoomKind>,
     /// Adjacency rules.
     pub adjacency: Vec<AdjacencyRule>,
+    /// Room types people enter a house through when there is no reception or hallway, best
+    /// first.
+    pub entrance_preference: Vec<String>,
     /// Nouns naming a whole building ("apartment", "hotel").
     pub house_nouns: Vec<String>,
     /// Words after a room word that make it a modifier ("bar counter", "office chair").
@@ -121,6 +124,7 @@ pub fn knowledge() -> &'static Knowledge {
             Knowledge {
                 room_types: BTreeMap::new(),
                 adjacency: Vec::new(),
+                entrance_preference: Vec::new(),
                 house_nouns: Vec::new(),
                 not_room_after: Vec::new(),
                 items_to_rooms: BTreeMap::new(),
@@ -219,6 +223,9 @@ mod tests {
             for b in &rule.b {
                 assert!(k.room_types.contains_key(b), "{b}");
             }
+        }
+        for t in &k.entrance_preference {
+            assert!(k.room_types.contains_key(t), "{t}");
         }
         for (item, types) in &k.items_to_rooms {
             for t in types {

@@ -352,18 +352,16 @@ pub fn connect(spec: &mut HouseSpec) {
     let entries = by_role(spec, &[Role::Entry]);
     let publics = by_role(spec, &[Role::Public]);
     let hubs = by_role(spec, &[Role::Hub]);
-    // The entrance: reception or lobby, else the hallway, else the living room, else the
-    // largest passable room, else the largest room.
-    let living = spec
-        .rooms
-        .iter()
-        .find(|r| {
-            matches!(
-                r.room_type.as_str(),
-                "living_room" | "studio" | "living_kitchen"
-            )
-        })
-        .map(|r| r.id.clone());
+    // The entrance: reception or lobby, else the hallway, else the room type people come in
+    // through (living room, restaurant, ...), else the largest passable room, else the
+    // largest room.
+    let living = k.entrance_preference.iter().find_map(|t| {
+        spec.rooms
+            .iter()
+            .filter(|r| &r.room_type == t)
+            .max_by(|a, b| area(a).total_cmp(&area(b)))
+            .map(|r| r.id.clone())
+    });
     spec.entrance = entries
         .first()
         .or(hubs.first())
