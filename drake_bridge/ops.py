@@ -9,7 +9,7 @@ from pydrake.common.eigen_geometry import Quaternion
 from pydrake.geometry import Role
 from pydrake.multibody.tree import ModelInstanceIndex
 
-from drake_bridge import BRIDGE_VERSION, PROTOCOL, asset_checks
+from drake_bridge import BRIDGE_VERSION, PROTOCOL, asset_checks, layout_checks
 from drake_bridge.conformance import op_mujoco_check, op_usd_check
 from drake_bridge.errors import BadRequest
 from drake_bridge.plant_cache import PlantCache
@@ -222,4 +222,5 @@ OPS = {
     "simulate": settle.op_simulate,
     "mujoco_check": op_mujoco_check,
     "usd_check": op_usd_check,
+    "drop_spheres": layout_checks.op_drop_spheres,
 }

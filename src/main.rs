@@ -28,8 +28,9 @@ enum Command {
     ///
     /// Every placement stage (furniture, wall, ceiling, small objects per supporting entity)
     /// runs through the designer / critic / orchestrator loop: the built-in offline agents by
-    /// default, an OpenAI-compatible model with --llm-base-url and --llm-model. The layout is
-    /// one room sized from the prompt's room type, with walls, a door and a window.
+    /// default, an OpenAI-compatible model with --llm-base-url and --llm-model. The layout
+    /// stage runs first: the rooms the prompt names (one room, or a house of up to 15+ rooms),
+    /// placed edge to edge with doors, windows, open connections and materials.
     Generate {
         /// What the scene should be, e.g. "a kitchen with a table and four chairs".
         prompt: String,
@@ -133,6 +134,15 @@ enum Command {
         /// Simulate the whole 5 s even when everything is at rest earlier.
         #[arg(long)]
         full_stb: bool,
+    },
+    /// Lay out the rooms of a prompt (no furniture, no files): print the floor plan and the
+    /// validation (with --json: every room, door, window and the checks).
+    Layout {
+        /// The prompt, e.g. "a flat with a kitchen, a living room, two bedrooms and a bathroom".
+        prompt: String,
+        /// Seed for every random choice.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
     },
 }
 
@@ -400,7 +410,6 @@ fn run_eval(
         eprint!("{}", eval::table(&metrics));
     }
     Ok(ExitCode::SUCCESS)
-
 }
 
 fn run_export(
@@ -468,6 +477,51 @@ fn run_export(
         print_json(&out)?;
     }
     Ok(if passed {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+fn run_layout(cli_json: bool, prompt: &str, seed: u64) -> anyhow::Result<ExitCode> {
+    use scenesmith::layout;
+    if let Err(e) = pipeline::validate_prompt(prompt) {
+        eprintln!("error: {e}");
+        return Ok(ExitCode::from(2));
+    }
+    let mut log = scenesmith::agents::RunLog::default();
+    let out = layout::stage::run_layout(
+        prompt,
+        seed,
+        &scenesmith::stages::run::Backend::Builtin,
+        &mut log,
+    )?;
+    if cli_json {
+        let obs = layout::tools::observe(&out.state).map_err(|e| anyhow::anyhow!(e.message))?;
+        let mut v = serde_json::to_value(&obs)?;
+        v["validation"] = serde_json::to_value(&out.validation)?;
+        v["critique"] = serde_json::to_value(&out.summary.critique)?;
+        print_json(&v)?;
+    } else {
+        print!("{}", layout::ascii::render(&out.rooms));
+        for e in &out.validation.errors {
+            eprintln!("  error: {e}");
+        }
+        for w in &out.validation.warnings {
+            eprintln!("  warning: {w}");
+        }
+        let s = &out.state.stats;
+        eprintln!(
+            "  {} rooms, compactness {:.2}, search {} nodes in {:.2}s{}{}",
+            out.rooms.len(),
+            s.compactness,
+            s.nodes,
+            s.seconds,
+            if s.relaxed { ", relaxed" } else { "" },
+            if s.timed_out { ", timed out" } else { "" }
+        );
+    }
+    Ok(if out.validation.ok {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
@@ -665,6 +719,7 @@ fn main() -> ExitCode {
             contact,
             full_stb,
         } => run_eval(cli.json, dir, robot_radius, no_stb, &contact, full_stb),
+        Command::Layout { prompt, seed } => run_layout(cli.json, &prompt, seed),
     };
     match result {
         Ok(code) => code,

@@ -8,8 +8,6 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use rand::SeedableRng;
-use rand::rngs::ChaCha8Rng;
 use serde::Serialize;
 use serde_json::json;
 
@@ -22,12 +20,12 @@ use crate::eval::{self, EvalError, EvalOptions, Metrics};
 use crate::formats::FormatError;
 use crate::formats::scene_dir::{self, names};
 use crate::geometry::GeometryError;
-use crate::layout::{self, architecture};
+use crate::layout;
 use crate::physics::collision;
 use crate::physics::postprocess::{self, PostProcessOptions, PostProcessReport};
 use crate::physics::{Bridge, BridgeError, BridgePool, PhysicsError};
-use crate::prompt;
-use crate::scene::{ObjectKind, Pose, Scene, Support, sanitize_name};
+
+use crate::scene::{ObjectKind, Scene, sanitize_name};
 use crate::stages::SceneState;
 use crate::stages::checkpoint::{CheckpointStore, DirCheckpoints, NoCheckpoints};
 use crate::stages::plan::plan_room;
@@ -286,8 +284,6 @@ pub fn build_scene_with(
     store: &mut dyn CheckpointStore,
 ) -> Result<(SceneState, BuildReport), PipelineError> {
     validate_prompt(prompt_text)?;
-    let reading = prompt::read(prompt_text);
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut scene = Scene::new(prompt_text, seed, package_name);
     for role in ["designer", "critic", "orchestrator"] {
         scene
@@ -303,36 +299,44 @@ pub fn build_scene_with(
         .provenance
         .backends
         .insert("physics".into(), "drake".into());
-    let room_id = scene.ids.allocate(&reading.room_type);
-    let room = layout::single_room(&room_id, &reading, prompt_text, &mut rng);
-    scene.rooms.push(room.clone());
-    let mut state = SceneState::new(scene);
-
-    let arch_asset = architecture::build_room_asset(&room, &format!("{room_id}_architecture"))?;
-    let arch_asset_id = state.insert_asset(arch_asset);
-    let arch_id = format!("{room_id}_architecture");
-    state.scene.ids.reserve(&arch_id);
-    state.scene.objects.push(crate::scene::SceneObject {
-        id: arch_id,
-        category: "room_architecture".into(),
-        kind: ObjectKind::Architecture,
-        room: room_id.clone(),
-        asset: arch_asset_id,
-        world_from_object: Pose::IDENTITY,
-        support: Support::World,
-        welded: true,
-        joint_positions: BTreeMap::new(),
-    });
-
-    let plan = plan_room(&reading);
-    let mut report = BuildReport {
-        unknown_nouns: plan.unknown.clone(),
-        ..BuildReport::default()
+    let mut report = BuildReport::default();
+    // The layout stage: rooms, walls, doors, windows, materials and per-room prompts.
+    let mut state = match store.load("layout") {
+        Some((saved, log)) => {
+            report.log = log;
+            saved
+        }
+        None => {
+            let layout = layout::stage::run_layout(prompt_text, seed, backend, &mut report.log)?;
+            let mut state = SceneState::new(scene);
+            layout::stage::install_rooms(&mut state, &layout.rooms)?;
+            report.stages.push(layout.summary);
+            store.save("layout", &state, &report.log);
+            state
+        }
     };
-    let requested = plan.requested();
-    let (state, stages) =
-        furnish_room_resumable(state, &room_id, plan, backend, &mut report.log, store)?;
-    report.stages = stages;
+    // Then every room's placement stages, on the room's own prompt.
+    let is_house = layout::brief::read(prompt_text).is_house;
+    let rooms = state.scene.rooms.clone();
+    let mut requested: Vec<(String, u32)> = Vec::new();
+    for room in &rooms {
+        let plan = plan_room(&layout::stage::room_reading(room, is_house));
+        for noun in &plan.unknown {
+            if !report.unknown_nouns.contains(noun) {
+                report.unknown_nouns.push(noun.clone());
+            }
+        }
+        for (noun, n) in plan.requested() {
+            match requested.iter_mut().find(|(x, _)| *x == noun) {
+                Some((_, total)) => *total += n,
+                None => requested.push((noun, n)),
+            }
+        }
+        let (next, stages) =
+            furnish_room_resumable(state, &room.id, plan, backend, &mut report.log, store)?;
+        state = next;
+        report.stages.extend(stages);
+    }
     report.coverage = requested
         .into_iter()
         .map(|(noun, wanted)| {
@@ -399,7 +403,11 @@ type Finished = (
     BuildReport,
     Vec<collision::PairPenetration>,
     Option<CheckSummary>,
-    Box<(PostProcessReport, Metrics, Vec<crate::export::WrittenExport>)>,
+    Box<(
+        PostProcessReport,
+        Metrics,
+        Vec<crate::export::WrittenExport>,
+    )>,
 );
 
 /// Writes a built scene into the staging directory, checks it in Drake and commits it.

@@ -94,16 +94,24 @@ pub fn wall_pieces(wall: &Wall, height: f64) -> Vec<WallPiece> {
     pieces
 }
 
-/// The floor slab polygon: the room's clear floor grown to the wall centre lines.
+/// The floor slab polygon: the room's clear floor grown to the wall centre lines, so the
+/// slabs of neighbouring rooms meet under their shared wall.
 fn slab_ring(room: &Room) -> Vec<[f64; 2]> {
-    if room.walls.len() >= 3 {
-        room.walls.iter().map(|w| w.start).collect()
-    } else {
-        room.floor_polygon.clone()
-    }
+    let Some(t) = room.walls.iter().map(|w| w.thickness).reduce(f64::max) else {
+        return room.floor_polygon.clone();
+    };
+    let (lo, hi) = polygon::bounds(&room.floor_polygon);
+    let h = t / 2.0;
+    vec![
+        [lo[0] - h, lo[1] - h],
+        [hi[0] + h, lo[1] - h],
+        [hi[0] + h, hi[1] + h],
+        [lo[0] - h, hi[1] + h],
+    ]
 }
 
-/// Builds the static architecture asset of a room: link `floor` (slab) and link `walls`.
+/// Builds the static architecture asset of a room: link `floor` (slab) and link `walls` (the
+/// walls this room owns; rooms are axis-aligned rectangles).
 pub fn build_room_asset(room: &Room, asset_id: &str) -> Result<Asset, GeometryError> {
     let floor_mat = material::material_or_default(&room.floor_material);
     let wall_mat = material::material_or_default(&room.wall_material);
@@ -119,7 +127,9 @@ pub fn build_room_asset(room: &Room, asset_id: &str) -> Result<Asset, GeometryEr
     }
 
     let mut walls = LinkBuilder::new("walls", Pose::IDENTITY, wall_mat);
-    for wall in &room.walls {
+    let mut wall_pieces_built = 0usize;
+    // A neighbour's wall seen from this room is built by the neighbour.
+    for wall in room.walls.iter().filter(|w| w.mirror_of.is_none()) {
         let world_from_wall = wall.world_from_wall();
         let half_t = wall.thickness / 2.0;
         for p in wall_pieces(wall, room.wall_height) {
@@ -127,6 +137,7 @@ pub fn build_room_asset(room: &Room, asset_id: &str) -> Result<Asset, GeometryEr
             let size = [p.x1 - p.x0, 2.0 * half_t, p.z1 - p.z0];
             let piece = ConvexPiece::cuboid(center, size)?.transformed(&world_from_wall);
             walls.add_collision(piece);
+            wall_pieces_built += 1;
             walls.add_visual(
                 mesh::box_mesh(center, size).transformed(&world_from_wall),
                 wall_mat.color,
@@ -138,7 +149,12 @@ pub fn build_room_asset(room: &Room, asset_id: &str) -> Result<Asset, GeometryEr
         id: asset_id.to_string(),
         category: "room_architecture".into(),
         material: room.wall_material.clone(),
-        links: vec![floor.finish_static(), walls.finish_static()],
+        // A room enclosed by rooms listed before it owns no wall.
+        links: if wall_pieces_built > 0 {
+            vec![floor.finish_static(), walls.finish_static()]
+        } else {
+            vec![floor.finish_static()]
+        },
         joints: vec![],
         surfaces: vec![],
         is_static: true,
@@ -163,6 +179,7 @@ mod tests {
             thickness: 0.1,
             neighbor: None,
             openings,
+            mirror_of: None,
         }
     }
 

@@ -1,10 +1,30 @@
-//! Layout stage: rooms, their sizes and walls, doors and windows.
+//! Layout stage: from the prompt to rooms, their sizes and how they connect, then volumetric
+//! walls and floors with doors, windows and open connections, per-room materials and per-room
+//! prompts for the placement stages.
 //!
-//! For now this builds a single room sized from its type and the prompt's size words, with one
-//! exterior door and one window. The multi-room layout search replaces [`single_room`] as the
-//! entry point of the stage.
+//! The data flows: [`brief`] reads the prompt into rooms (counts, en-suites, the sentences
+//! about each room), [`spec`] sizes them (type priors, size words, contents) and decides who
+//! may be entered from whom, [`search`] places them edge to edge as [`cells`], [`connect`]
+//! plans doors and windows, [`walls`] builds the scene rooms, [`validate`] checks them,
+//! [`architecture`] turns a room into its static asset. [`state`], [`tools`], [`builtin`] and
+//! [`stage`] run all of it as an agent-loop stage; [`ascii`] draws a text floor plan.
+//! Furnishing the rooms is not done here.
 
 pub mod architecture;
+pub mod ascii;
+pub mod brief;
+pub mod builtin;
+pub mod cells;
+pub mod connect;
+pub mod knowledge;
+pub mod materials;
+pub mod search;
+pub mod spec;
+pub mod stage;
+pub mod state;
+pub mod tools;
+pub mod validate;
+pub mod walls;
 
 use rand::RngExt;
 use rand::rngs::ChaCha8Rng;
@@ -42,12 +62,14 @@ pub fn rectangle_walls(
             thickness,
             neighbor: None,
             openings: Vec::new(),
+            mirror_of: None,
         })
         .collect()
 }
 
-/// One room for the whole prompt: clear floor from the type's prior (scaled by size words and
-/// jittered by the seed), a door in the south wall and a window in the north wall.
+/// One room for the whole prompt without the layout stage: clear floor from the type's prior
+/// (scaled by size words and jittered by the seed), a door in the south wall and a window in
+/// the north wall. The pipeline runs [`stage::run_layout`] instead.
 pub fn single_room(
     room_id: &str,
     reading: &Reading,

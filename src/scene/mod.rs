@@ -88,7 +88,9 @@ pub struct Room {
     pub floor_polygon: Vec<[f64; 2]>,
     /// Floor to ceiling, metres.
     pub wall_height: f64,
-    /// Walls owned by this room (a wall shared with a neighbour is owned by one of the two).
+    /// Every wall around the room's floor, each facing into this room. A wall shared with a
+    /// neighbour is listed in both rooms but built by one: the other room's copy names it in
+    /// [`Wall::mirror_of`].
     pub walls: Vec<Wall>,
     /// Floor material name (see the material table).
     pub floor_material: String,
@@ -116,6 +118,11 @@ pub struct Wall {
     /// Doors, windows and open connections cut through the wall.
     #[serde(default)]
     pub openings: Vec<Opening>,
+    /// For this room's side of a shared wall whose geometry the neighbour builds: the id of the
+    /// neighbour's wall (same centre line, reversed, openings mirrored). `None`: this room
+    /// builds the wall.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mirror_of: Option<String>,
 }
 
 impl Wall {
@@ -515,6 +522,7 @@ mod tests {
             thickness: 0.1,
             neighbor: None,
             openings: vec![],
+            mirror_of: None,
         };
         let inward = w
             .world_from_wall()

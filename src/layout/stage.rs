@@ -1,0 +1,188 @@
+//! Runs the layout stage through the agent loop (built-in or LLM backend) and installs its
+//! rooms in a scene: one static architecture object per room.
+
+use std::collections::BTreeMap;
+
+use super::builtin::{BuiltinLayoutCritic, BuiltinLayoutDesigner};
+use super::state::LayoutState;
+use super::tools;
+use super::validate::Validation;
+use super::{architecture, spec};
+use crate::agents::llm::{LlmCritic, LlmDesigner, LlmOrchestrator};
+use crate::agents::{
+    AgentError, BuiltinOrchestrator, Critic, Designer, Orchestrator, RunLog, StageConfig,
+    StageSpec, run_stage,
+};
+use crate::geometry::GeometryError;
+use crate::prompt::Reading;
+use crate::scene::{ObjectKind, Pose, Room, SceneObject, Support};
+use crate::stages::SceneState;
+use crate::stages::run::{Backend, StageSummary};
+
+/// What the layout stage produced.
+#[derive(Debug, Clone)]
+pub struct LayoutOutcome {
+    /// The kept state.
+    pub state: LayoutState,
+    /// The rooms with walls, openings, materials and per-room prompts.
+    pub rooms: Vec<Room>,
+    /// Validation of the kept layout.
+    pub validation: Validation,
+    /// The stage's scores.
+    pub summary: StageSummary,
+}
+
+type Agents = (
+    Box<dyn Designer<LayoutState>>,
+    Box<dyn Critic<LayoutState>>,
+    Box<dyn Orchestrator>,
+);
+
+fn brief(state: &LayoutState) -> String {
+    let rooms: Vec<String> = state.brief.rooms.iter().map(|r| r.label.clone()).collect();
+    format!(
+        "Prompt: \"{}\". Rooms the prompt names: {}. An initial layout was generated from the \
+         prompt; inspect it (observe_scene, render_ascii, validate) and improve it, or call \
+         generate_room_specs to start over.",
+        state.prompt,
+        if rooms.is_empty() {
+            "none recognised".to_string()
+        } else {
+            rooms.join(", ")
+        }
+    )
+}
+
+/// Runs the layout stage for `prompt` and returns the kept layout.
+pub fn run_layout(
+    prompt: &str,
+    seed: u64,
+    backend: &Backend,
+    log: &mut RunLog,
+) -> Result<LayoutOutcome, AgentError> {
+    let t0 = std::time::Instant::now();
+    let initial = LayoutState::from_prompt(prompt, seed);
+    let text = brief(&initial);
+    let toolbox = tools::toolbox();
+    let categories = tools::categories();
+    let (mut designer, mut critic, mut orchestrator): Agents = match backend {
+        Backend::Builtin => (
+            Box::new(BuiltinLayoutDesigner),
+            Box::new(BuiltinLayoutCritic),
+            Box::new(BuiltinOrchestrator::default()),
+        ),
+        Backend::Llm { transport, config } => {
+            let mut orch = LlmOrchestrator::new(transport.clone(), config.clone());
+            orch.set_stage("layout", &text);
+            (
+                Box::new(LlmDesigner::new(transport.clone(), config.clone())),
+                Box::new(LlmCritic::new(transport.clone(), config.clone())),
+                Box::new(orch),
+            )
+        }
+    };
+    let spec = StageSpec {
+        name: "layout",
+        categories: &categories,
+        toolbox: &toolbox,
+        brief: &text,
+    };
+    let config = StageConfig {
+        max_rounds: 3,
+        early_finish_min_score: 8,
+        ..StageConfig::default()
+    };
+    let outcome = run_stage(
+        &spec,
+        initial,
+        designer.as_mut(),
+        critic.as_mut(),
+        orchestrator.as_mut(),
+        &config,
+        log,
+    )?;
+    let mut state = outcome.state;
+    if state.spec.is_none() {
+        // A designer that threw the layout away without making a new one: start from the
+        // prompt again rather than build an empty house.
+        tracing::warn!("the layout designer left no rooms; using the layout read from the prompt");
+        state = LayoutState::from_prompt(prompt, seed);
+    }
+    let (rooms, _) = state.rooms();
+    let validation = state.validation();
+    if !validation.ok {
+        tracing::warn!("layout problems: {}", validation.errors.join("; "));
+    }
+    Ok(LayoutOutcome {
+        rooms,
+        validation,
+        summary: StageSummary {
+            stage: "layout".into(),
+            room: "house".into(),
+            entity: None,
+            critique: outcome.critique,
+            rounds: outcome.history.len(),
+            seconds: t0.elapsed().as_secs_f64(),
+        },
+        state,
+    })
+}
+
+/// Adds the rooms to the scene, each with its static architecture object.
+pub fn install_rooms(state: &mut SceneState, rooms: &[Room]) -> Result<(), GeometryError> {
+    for room in rooms {
+        state.scene.ids.reserve(&room.id);
+        state.scene.rooms.push(room.clone());
+    }
+    for room in rooms {
+        let arch_id = format!("{}_architecture", room.id);
+        let asset = architecture::build_room_asset(room, &arch_id)?;
+        let asset_id = state.insert_asset(asset);
+        state.scene.ids.reserve(&arch_id);
+        state.scene.objects.push(SceneObject {
+            id: arch_id,
+            category: "room_architecture".into(),
+            kind: ObjectKind::Architecture,
+            room: room.id.clone(),
+            asset: asset_id,
+            world_from_object: Pose::IDENTITY,
+            support: Support::World,
+            welded: true,
+            joint_positions: BTreeMap::new(),
+        });
+    }
+    Ok(())
+}
+
+/// The prompt reading the placement stages of `room` work from: its own prompt, with the room
+/// type the reader's tables know (in a house; a one-room prompt keeps the reader's own type).
+pub fn room_reading(room: &Room, is_house: bool) -> Reading {
+    let mut reading = crate::prompt::read(&room.prompt);
+    if is_house {
+        reading.room_type = spec::reader_room_type(&room.room_type);
+    }
+    reading
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builtin_stage_lays_out_a_valid_house() {
+        let mut log = RunLog::default();
+        let out = run_layout(
+            "A small office suite with a reception, a private office, and a bathroom.",
+            4,
+            &Backend::Builtin,
+            &mut log,
+        )
+        .unwrap();
+        assert!(out.validation.ok, "{:?}", out.validation);
+        assert_eq!(out.rooms.len(), 3);
+        let c = out.summary.critique.unwrap();
+        assert_eq!(c.scores.len(), 5);
+        assert!(c.min_score() >= 7, "{}", c.summary());
+        assert!(log.calls("layout", crate::agents::Role::Critic).count() >= 2);
+    }
+}
