@@ -128,6 +128,23 @@ pub struct GenerateOptions {
     pub resume: bool,
 }
 
+impl GenerateOptions {
+    /// What the CLI does by default: seed 0, the Drake check, renders, every export, the
+    /// built-in backend, no resume.
+    pub fn new(prompt: impl Into<String>, out: impl Into<PathBuf>) -> GenerateOptions {
+        GenerateOptions {
+            prompt: prompt.into(),
+            seed: 0,
+            out: out.into(),
+            drake_check: true,
+            render: true,
+            exports: crate::export::ExportSet::all(),
+            backend: BackendChoice::Builtin,
+            resume: false,
+        }
+    }
+}
+
 /// Identifies a request for checkpoints: the same tool version, prompt, seed and backend.
 fn fingerprint(opts: &GenerateOptions) -> String {
     let backend = match &opts.backend {

@@ -49,21 +49,32 @@ pub fn coverage(reading: &Reading, scene: &Scene) -> Coverage {
     {
         *present.entry(o.category.as_str()).or_insert(0) += 1;
     }
-    let mut asked: BTreeMap<String, Count> = BTreeMap::new();
+    // Within a room, repeated mentions of a category ("a table ... the table") merge into the
+    // largest count; across rooms of a house they add up. Per-parent and per-setting counts
+    // ("two chairs at each desk", "set for 4") are totals.
+    let mut per_room: BTreeMap<(String, usize), Count> = BTreeMap::new();
     let mut negated: Vec<String> = Vec::new();
-    for m in &reading.mentions {
+    for (i, m) in reading.mentions.iter().enumerate() {
         if m.negated {
             negated.push(m.category.clone());
             continue;
         }
-        asked
-            .entry(m.category.clone())
+        let total = reading.total(i);
+        per_room
+            .entry((m.category.clone(), m.room))
             .and_modify(|c| {
-                if m.count.minimum() > c.minimum() {
-                    *c = m.count;
+                if total.minimum() > c.minimum() {
+                    *c = total;
                 }
             })
-            .or_insert(m.count);
+            .or_insert(total);
+    }
+    let mut asked: BTreeMap<String, Count> = BTreeMap::new();
+    for ((cat, _), count) in per_room {
+        asked
+            .entry(cat)
+            .and_modify(|c| *c = add_counts(*c, count))
+            .or_insert(count);
     }
     let mut requirements = Vec::new();
     for (cat, count) in &asked {
@@ -121,10 +132,18 @@ pub fn coverage(reading: &Reading, scene: &Scene) -> Coverage {
     }
 }
 
+/// Two rooms' counts of one category together.
+fn add_counts(a: Count, b: Count) -> Count {
+    match (a, b) {
+        (Count::Exactly(x), Count::Exactly(y)) => Count::Exactly(x + y),
+        (Count::Several, Count::Several) => Count::Several,
+        _ => Count::AtLeast(a.minimum() + b.minimum()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::prompt::Mention;
     use crate::scene::{Pose, SceneObject, Support};
 
     fn scene_with(cats: &[&str]) -> Scene {
@@ -145,27 +164,11 @@ mod tests {
         s
     }
 
-    fn mention(cat: &str, count: Count, negated: bool) -> Mention {
-        Mention {
-            category: cat.into(),
-            noun: cat.into(),
-            count,
-            negated,
-        }
-    }
-
     #[test]
     fn exact_at_least_several_and_negated() {
-        let reading = Reading {
-            room_type: "kitchen".into(),
-            size_scale: 1.0,
-            mentions: vec![
-                mention("chair", Count::Exactly(4), false),
-                mention("mug", Count::AtLeast(3), false),
-                mention("book", Count::Several, false),
-                mention("cabinet", Count::Exactly(1), true),
-            ],
-        };
+        let reading = crate::prompt::read(
+            "A kitchen with four chairs, at least 3 mugs, some books and no cabinet.",
+        );
         let scene = scene_with(&[
             "chair", "chair", "chair", "mug", "mug", "mug", "mug", "book",
         ]);
@@ -183,5 +186,31 @@ mod tests {
         assert!((c.percent - 50.0).abs() < 1e-9);
         // 3 of 4 chairs, 3 of 3 mugs, 1 of 2 books.
         assert!((c.count_percent - 100.0 * 7.0 / 9.0).abs() < 1e-9);
+    }
+}
+
+#[cfg(test)]
+mod house_tests {
+    use super::*;
+
+    #[test]
+    fn rooms_of_a_house_add_up_and_per_parent_counts_multiply() {
+        assert_eq!(
+            add_counts(Count::Exactly(2), Count::Exactly(3)),
+            Count::Exactly(5)
+        );
+        assert_eq!(
+            add_counts(Count::Several, Count::Exactly(1)),
+            Count::AtLeast(3)
+        );
+        let reading = crate::prompt::read("An office with two desks, each with a chair.");
+        let scene = Scene::new("p", 0, "t");
+        let c = coverage(&reading, &scene);
+        let chair = c
+            .requirements
+            .iter()
+            .find(|r| r.category == "chair")
+            .expect("chairs are asked for");
+        assert_eq!(chair.required, 2, "{:?}", c.requirements);
     }
 }
