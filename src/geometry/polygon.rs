@@ -72,6 +72,43 @@ pub fn is_convex(ring: &[[f64; 2]]) -> bool {
     })
 }
 
+/// Convex hull of a point set, counter-clockwise, without collinear points (Andrew's monotone
+/// chain). Fewer than three distinct points come back as they are (deduplicated).
+pub fn convex_hull(points: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mut pts: Vec<[f64; 2]> = points
+        .iter()
+        .copied()
+        .filter(|p| p.iter().all(|v| v.is_finite()))
+        .collect();
+    pts.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    pts.dedup();
+    if pts.len() < 3 {
+        return pts;
+    }
+    let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    };
+    let mut hull: Vec<[f64; 2]> = Vec::with_capacity(2 * pts.len());
+    for pass in 0..2 {
+        let start = hull.len();
+        let ordered: Box<dyn Iterator<Item = &[f64; 2]>> = if pass == 0 {
+            Box::new(pts.iter())
+        } else {
+            Box::new(pts.iter().rev())
+        };
+        for &p in ordered {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 1e-15
+            {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    hull
+}
+
 /// Checks that a floor polygon is usable: at least 3 vertices, finite, counter-clockwise,
 /// positive area.
 pub fn validate_floor(ring: &[[f64; 2]]) -> Result<(), GeometryError> {
@@ -144,6 +181,24 @@ pub fn convex_parts(ring: &[[f64; 2]]) -> Result<Vec<Vec<[f64; 2]>>, GeometryErr
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn hull_drops_inner_and_collinear_points() {
+        let pts = [
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 0.5],
+            [0.0, 1.0],
+            [0.0, 1.0],
+        ];
+        let h = convex_hull(&pts);
+        assert_eq!(h.len(), 4, "{h:?}");
+        assert!((signed_area(&h) - 2.0).abs() < 1e-12);
+        assert!(is_convex(&h));
+        assert_eq!(convex_hull(&[[1.0, 1.0], [1.0, 1.0]]).len(), 1);
+    }
 
     #[test]
     fn rectangle_is_one_part() {

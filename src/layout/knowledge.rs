@@ -178,6 +178,8 @@ pub fn room_words() -> &'static [(Vec<String>, String)] {
             .filter(|(t, _)| !t.is_empty())
             .collect();
         out.sort_by(|a, b| b.0.len().cmp(&a.0.len()).then(a.0.cmp(&b.0)));
+        // Spellings that read the same ("children's bedroom", "child bedroom") once.
+        out.dedup();
         out
     })
 }

@@ -481,11 +481,12 @@ mod tests {
             "{:?}",
             b.size
         );
-        // Small objects that overflow the planned shelves ask for more shelving.
+        // Small objects that overflow the planned shelves (a pantry's knowledge brings three
+        // shelf units) ask for more shelving.
         let one = content_needs(&room_plan("pantry", "A pantry with a cabinet.", false));
         let many = content_needs(&room_plan(
             "pantry",
-            "A pantry with a cabinet holding 60 mugs.",
+            "A pantry with a cabinet holding 100 mugs and 100 bowls.",
             false,
         ));
         assert!(many.wall_m > one.wall_m + 0.9, "{one:?} {many:?}");

@@ -15,8 +15,10 @@
 //! satisfies the QP separates the pair.
 //!
 //! In `xy_only` mode objects slide on the floor: z only rises to meet the floor bound. A pair
-//! whose penetration normal is nearly vertical then gets a separating-axis row along the line
-//! between the pieces' centres instead (sliding along a vertical normal resolves nothing).
+//! of bodies with a nearly vertical penetration normal then gets one row along the shortest
+//! horizontal exit instead: the separating axis of the two bodies' footprints (sliding along a
+//! vertical normal resolves nothing, and piece rows would fence a chair back that pokes through
+//! a table top inside the apron).
 //!
 //! This module does not touch the scene: it returns per-object translation offsets.
 
@@ -35,6 +37,7 @@ use serde::Serialize;
 use super::PhysicsError;
 use super::as_written::posed_objects;
 use super::collision::{PosedPiece, sat_penetration};
+use crate::geometry::polygon;
 use crate::scene::Pose;
 use crate::stages::SceneState;
 
@@ -362,6 +365,8 @@ fn measure(
             ) {
                 continue;
             }
+            let first_row = rows.len();
+            let mut slide_out = false;
             for pa in a.pieces.iter().filter(|p| !p.is_floor) {
                 for pb in b.pieces.iter().filter(|p| !p.is_floor) {
                     if !overlap(
@@ -404,8 +409,8 @@ fn measure(
                         let e = deepest.entry((i, j)).or_insert(0.0f64);
                         *e = e.max(-d);
                     }
-                    let mut n = normal;
-                    let mut d_row = d;
+                    let n = normal;
+                    let d_row = d;
                     let target = if d < -opts.tolerance {
                         opts.clearance
                     } else {
@@ -413,26 +418,10 @@ fn measure(
                     };
                     let horizontal = (n.x * n.x + n.y * n.y).sqrt();
                     if opts.xy_only && d < -opts.tolerance && horizontal < 0.5 {
-                        // Separating axis along the line between the pieces' centres, in XY.
-                        let ca = (pa.lo0 + pa.hi0) / 2.0 + oa;
-                        let cb = (pb.lo0 + pb.hi0) / 2.0 + ob;
-                        let mut u = Vector3::new(cb.x - ca.x, cb.y - ca.y, 0.0);
-                        if u.norm() < 1e-9 {
-                            u = Vector3::x();
-                        }
-                        u.normalize_mut();
-                        let a_max = pa
-                            .verts0
-                            .iter()
-                            .map(|v| (v + oa).dot(&u))
-                            .fold(f64::NEG_INFINITY, f64::max);
-                        let b_min = pb
-                            .verts0
-                            .iter()
-                            .map(|v| (v + ob).dot(&u))
-                            .fold(f64::INFINITY, f64::min);
-                        n = u;
-                        d_row = b_min - a_max;
+                        // Sliding along a vertical normal resolves nothing: the pair gets one
+                        // row for the whole bodies below.
+                        slide_out = true;
+                        continue;
                     } else if n.norm() < 0.5 || !n.iter().all(|v| v.is_finite()) {
                         continue;
                     }
@@ -448,6 +437,31 @@ fn measure(
                     });
                 }
             }
+            if slide_out {
+                // One body slides out of the other's footprint along the shortest horizontal
+                // exit. Piece rows would fence it in: a chair back through a table top cannot
+                // cross the apron sideways, so it leaves the table's whole footprint.
+                rows.truncate(first_row);
+                let band = |body: &Body, o: &Vector3<f64>, other: &Body, oo: &Vector3<f64>| {
+                    let (zlo, zhi) = (other.lo0.z + oo.z, other.hi0.z + oo.z);
+                    body.pieces
+                        .iter()
+                        .filter(|p| !p.is_floor && p.lo0.z + o.z < zhi && p.hi0.z + o.z > zlo)
+                        .flat_map(|p| p.verts0.iter().copied())
+                        .collect::<Vec<_>>()
+                };
+                if let Some((n, depth)) =
+                    xy_separation(&band(a, &oa, b, &ob), &oa, &band(b, &ob, a, &oa), &ob)
+                {
+                    rows.push(Row {
+                        a: i,
+                        b: j,
+                        n,
+                        d: -depth,
+                        target: opts.clearance,
+                    });
+                }
+            }
         }
     }
     Measured {
@@ -455,6 +469,60 @@ fn measure(
         deepest,
         below_floor,
     }
+}
+
+/// The horizontal direction `n` (unit, from `a` towards `b`) along which the vertical prisms over
+/// the two pieces' footprints overlap least, and that overlap (metres, positive when they
+/// overlap): moving `b` by `overlap` along `n` (or `a` against it) separates the footprints.
+/// `None` when the footprints are already apart or degenerate.
+fn xy_separation(
+    verts_a: &[Vector3<f64>],
+    offset_a: &Vector3<f64>,
+    verts_b: &[Vector3<f64>],
+    offset_b: &Vector3<f64>,
+) -> Option<(Vector3<f64>, f64)> {
+    let footprint = |verts: &[Vector3<f64>], o: &Vector3<f64>| {
+        let pts: Vec<[f64; 2]> = verts.iter().map(|v| [v.x + o.x, v.y + o.y]).collect();
+        polygon::convex_hull(&pts)
+    };
+    let (ha, hb) = (footprint(verts_a, offset_a), footprint(verts_b, offset_b));
+    if ha.len() < 2 || hb.len() < 2 {
+        return None;
+    }
+    let project = |hull: &[[f64; 2]], u: [f64; 2]| {
+        hull.iter()
+            .map(|p| p[0] * u[0] + p[1] * u[1])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            })
+    };
+    let mut best: Option<([f64; 2], f64)> = None;
+    for hull in [&ha, &hb] {
+        for k in 0..hull.len() {
+            let (p, q) = (hull[k], hull[(k + 1) % hull.len()]);
+            let len = ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt();
+            if len < 1e-12 {
+                continue;
+            }
+            let u = [(q[1] - p[1]) / len, -(q[0] - p[0]) / len];
+            let (alo, ahi) = project(&ha, u);
+            let (blo, bhi) = project(&hb, u);
+            // b forwards along u, or backwards.
+            let (forward, backward) = (ahi - blo, bhi - alo);
+            if forward <= 0.0 || backward <= 0.0 {
+                return None;
+            }
+            let (dir, depth) = if forward <= backward {
+                (u, forward)
+            } else {
+                ([-u[0], -u[1]], backward)
+            };
+            if best.is_none_or(|(_, d)| depth < d) {
+                best = Some((dir, depth));
+            }
+        }
+    }
+    best.map(|(u, depth)| (Vector3::new(u[0], u[1], 0.0), depth))
 }
 
 fn max_depth(m: &Measured) -> f64 {

@@ -23,6 +23,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::agents::ToolError;
 use crate::assets::procedural::{self, AssetRequest, SupportClass};
+use crate::assets::router::{self, RouteRequest, RouterContext, Stage, Strategy};
 use crate::assets::{Asset, AssetError};
 use crate::scene::{ObjectKind, Pose, Scene, SceneObject, Support};
 
@@ -167,6 +168,16 @@ impl StageKind {
         }
     }
 
+    fn router_stage(self) -> Option<Stage> {
+        match self {
+            StageKind::Layout => None,
+            StageKind::Furniture => Some(Stage::Furniture),
+            StageKind::Wall => Some(Stage::Wall),
+            StageKind::Ceiling => Some(Stage::Ceiling),
+            StageKind::Manipuland => Some(Stage::Manipuland),
+        }
+    }
+
     fn support(self) -> Option<SupportClass> {
         match self {
             StageKind::Layout => None,
@@ -185,6 +196,13 @@ fn stage_for_support(s: SupportClass) -> &'static str {
         SupportClass::Ceiling => "ceiling",
         SupportClass::Surface => "manipuland",
     }
+}
+
+/// The asset router of this process, configured from the environment once (disk cache,
+/// articulated library, mesh folder, text-to-3D backend; see the README's *Assets*).
+fn router_context() -> &'static RouterContext {
+    static CONTEXT: std::sync::OnceLock<RouterContext> = std::sync::OnceLock::new();
+    CONTEXT.get_or_init(RouterContext::from_env)
 }
 
 /// An asset chosen for a description.
@@ -235,22 +253,18 @@ impl StageState {
         None
     }
 
-    /// Builds (or reuses) the asset for `description`, refusing objects of another stage with
-    /// a reason the designer can act on.
+    /// Builds (or reuses) the asset for `description` through the asset router (attributes
+    /// such as "red oak" choose materials; an unknown noun gets a generic shape of the stage's
+    /// support class, or an external mesh when one is configured), refusing objects of another
+    /// stage with a reason the designer can act on.
     pub fn route_asset(
         &mut self,
         description: &str,
         size: Option<[f64; 3]>,
     ) -> Result<RoutedAsset, ToolError> {
-        let category = Self::category_of(description).ok_or_else(|| {
-            ToolError::failed(format!(
-                "no asset matches {description:?}; known categories: {}",
-                procedural::categories().join(", ")
-            ))
-        })?;
-        let prior = procedural::prior(category)
-            .ok_or_else(|| ToolError::failed(format!("no prior for {category}")))?;
-        if let Some(want) = self.kind.support()
+        let category = Self::category_of(description);
+        if let (Some(category), Some(want)) = (category, self.kind.support())
+            && let Some(prior) = procedural::prior(category)
             && prior.support != want
         {
             return Err(ToolError::failed(format!(
@@ -260,22 +274,39 @@ impl StageState {
                 self.kind.as_str()
             )));
         }
+        let stage = self
+            .kind
+            .router_stage()
+            .ok_or_else(|| ToolError::failed("the layout stage places no objects".to_string()))?;
         // One seed per (scene seed, category, size): identical requests share one asset, so a
         // set of chairs matches.
-        let key = format!("{}:{category}:{size:?}", self.scene.scene.provenance.seed);
+        let key = format!(
+            "{}:{}:{size:?}",
+            self.scene.scene.provenance.seed,
+            category.unwrap_or(description)
+        );
         let h = blake3::hash(key.as_bytes());
         let seed = u64::from_le_bytes(h.as_bytes()[..8].try_into().unwrap_or([0; 8]));
-        let mut request = AssetRequest::new(category, seed);
+        let mut request = RouteRequest::new(description, stage, seed);
+        request.category = category.map(str::to_string);
         request.size = size;
         self.requests += 1;
+        let routed = router::route(&request, router_context())
+            .map_err(|e| ToolError::failed(e.to_string()))?;
+        if routed.primary.strategy == Strategy::Generic {
+            tracing::info!(
+                "no generator knows {description:?}: a generic {} stands in",
+                routed.primary.category
+            );
+        }
+        let category = routed.primary.category.clone();
         let id = self
             .scene
-            .build_asset(&request)
-            .map_err(|e| ToolError::failed(e.to_string()))?;
+            .insert_asset(routed.primary.asset.as_ref().clone());
         let [lo, hi] = self.scene.scene.assets[&id].bounds;
         Ok(RoutedAsset {
             asset: id,
-            category: category.to_string(),
+            category,
             size: [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]],
         })
     }
