@@ -8,7 +8,7 @@ use clap::{Parser, Subcommand};
 use serde_json::json;
 
 use scenesmith::agents::llm::LlmConfig;
-use scenesmith::physics::{Bridge, BridgeConfig};
+use scenesmith::physics::Bridge;
 use scenesmith::pipeline::{self, BackendChoice, GenerateOptions, PipelineError};
 
 /// Text prompt -> simulation-ready indoor scene (SDFormat + Drake model directives).
@@ -117,6 +117,23 @@ enum Command {
         #[arg(long, default_value_t = 0)]
         seed: u64,
     },
+    /// Build every category of the procedural library at its typical size and lay the
+    /// previews out on contact sheets: DIR/gallery_{floor,wall,ceiling,surface}.png plus
+    /// DIR/gallery.json (size, mass, hull count, joints per category).
+    Gallery {
+        /// Output directory.
+        #[arg(long, short)]
+        out: PathBuf,
+        /// Only categories whose name contains this text.
+        #[arg(long)]
+        only: Option<String>,
+        /// Previews per row.
+        #[arg(long, default_value_t = 12)]
+        columns: usize,
+        /// Seed of every generator.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+    },
     /// Compute a scene's metrics (counts, COL, STB, MD/XD/MR, NAV, OOB, prompt coverage),
     /// write DIR/metrics.json and print a table.
     Eval {
@@ -143,6 +160,10 @@ enum Command {
         /// Seed for every random choice.
         #[arg(long, default_value_t = 0)]
         seed: u64,
+        /// Also write the top-down plan as a PNG (rooms with names, sizes and materials,
+        /// textured floors, walls, doors with their swing, windows).
+        #[arg(long)]
+        png: Option<PathBuf>,
     },
 }
 
@@ -399,7 +420,7 @@ fn run_eval(
         }),
         ..EvalOptions::default()
     };
-    let pool = (!no_stb).then(|| scenesmith::physics::BridgePool::new(BridgeConfig::from_env(), 1));
+    let pool = (!no_stb).then(scenesmith::physics::BridgePool::from_env);
     let metrics = eval::evaluate_dir(&dir, pool.as_ref(), &opts)
         .with_context(|| format!("evaluating {}", dir.display()))?;
     eval::write_metrics(&dir, &metrics)?;
@@ -483,7 +504,12 @@ fn run_export(
     })
 }
 
-fn run_layout(cli_json: bool, prompt: &str, seed: u64) -> anyhow::Result<ExitCode> {
+fn run_layout(
+    cli_json: bool,
+    prompt: &str,
+    seed: u64,
+    png: Option<PathBuf>,
+) -> anyhow::Result<ExitCode> {
     use scenesmith::layout;
     if let Err(e) = pipeline::validate_prompt(prompt) {
         eprintln!("error: {e}");
@@ -496,6 +522,11 @@ fn run_layout(cli_json: bool, prompt: &str, seed: u64) -> anyhow::Result<ExitCod
         &scenesmith::stages::run::Backend::Builtin,
         &mut log,
     )?;
+    if let Some(path) = &png {
+        let bytes = layout::stage::plan_png(prompt, seed, &out.rooms)?;
+        scenesmith::util::fsx::write_atomic(path, &bytes)?;
+        eprintln!("wrote {}", path.display());
+    }
     if cli_json {
         let obs = layout::tools::observe(&out.state).map_err(|e| anyhow::anyhow!(e.message))?;
         let mut v = serde_json::to_value(&obs)?;
@@ -620,7 +651,12 @@ fn run_asset(
         seed,
     };
     let ctx = router::RouterContext::from_env();
-    let report = match command::make_asset(&opts, &ctx, None) {
+    let preview = |asset: &scenesmith::assets::Asset| {
+        scenesmith::render::asset_preview(asset, 480, 360)
+            .and_then(|image| image.encode_png())
+            .ok()
+    };
+    let report = match command::make_asset(&opts, &ctx, Some(&preview)) {
         Ok(r) => r,
         Err(command::AssetCommandError::Route(e)) => {
             eprintln!("error: {e}");
@@ -655,6 +691,44 @@ fn run_asset(
         }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+fn run_gallery(
+    cli_json: bool,
+    out: PathBuf,
+    only: Option<String>,
+    columns: usize,
+    seed: u64,
+) -> anyhow::Result<ExitCode> {
+    use scenesmith::render::gallery::{GalleryError, GalleryOptions, write_gallery};
+    let mut opts = GalleryOptions::new(out);
+    opts.filter = only;
+    opts.columns = columns.max(1);
+    opts.seed = seed;
+    let report = match write_gallery(&opts) {
+        Ok(r) => r,
+        Err(e @ GalleryError::NothingMatches(_)) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+        Err(e) => return Err(e.into()),
+    };
+    if cli_json {
+        print_json(&serde_json::to_value(&report)?)?;
+    } else {
+        for sheet in &report.sheets {
+            eprintln!("wrote {}", sheet.display());
+        }
+        eprintln!("{} categories", report.entries.len());
+        for (category, reason) in &report.failed {
+            eprintln!("  failed: {category}: {reason}");
+        }
+    }
+    Ok(if report.failed.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
 }
 
 fn main() -> ExitCode {
@@ -712,6 +786,12 @@ fn main() -> ExitCode {
             size,
             seed,
         } => run_asset(cli.json, description, out, stage, size, seed),
+        Command::Gallery {
+            out,
+            only,
+            columns,
+            seed,
+        } => run_gallery(cli.json, out, only, columns, seed),
         Command::Eval {
             dir,
             robot_radius,
@@ -719,7 +799,7 @@ fn main() -> ExitCode {
             contact,
             full_stb,
         } => run_eval(cli.json, dir, robot_radius, no_stb, &contact, full_stb),
-        Command::Layout { prompt, seed } => run_layout(cli.json, &prompt, seed),
+        Command::Layout { prompt, seed, png } => run_layout(cli.json, &prompt, seed, png),
     };
     match result {
         Ok(code) => code,

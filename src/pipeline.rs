@@ -357,14 +357,11 @@ pub fn build_scene_with(
     report.coverage = requested
         .into_iter()
         .map(|(noun, wanted)| {
-            let cat = crate::stages::StageState::category_of(&noun)
-                .unwrap_or(&noun)
-                .to_string();
             let present = state
                 .scene
                 .objects
                 .iter()
-                .filter(|o| o.category == cat)
+                .filter(|o| crate::stages::StageState::names(&noun, &o.category))
                 .count() as u32;
             (noun, wanted, present)
         })
@@ -493,12 +490,7 @@ fn finish_run(
 
     // --- metrics.json (the same code as `scenesmith eval`; STB needs the bridge) ---
     let metrics = timed(timings, "metrics", || {
-        eval::evaluate(
-            &state,
-            Some(staging.path()),
-            pool.as_ref(),
-            &EvalOptions::default(),
-        )
+        eval::evaluate(&state, pool.as_ref(), &EvalOptions::default())
     })?;
     eval::write_metrics(staging.path(), &metrics)?;
     // --- end of metrics ---

@@ -108,11 +108,15 @@ fn furniture_script() -> Script {
                 .to_string(),
         )])
     };
-    // First critique: the critic also inspects, and first submits an invalid critique.
+    // First critique: the critic also inspects (and looks at a picture), and first submits an
+    // invalid critique.
     s.push(
         "furniture",
         "critic",
-        tool_calls(&[("check_collisions", "{}")]),
+        tool_calls(&[
+            ("check_collisions", "{}"),
+            ("render_room_image", "{\"view\": \"plan\"}"),
+        ]),
     );
     s.push(
         "furniture",
@@ -198,6 +202,27 @@ fn scripted_designer_critic_orchestrator_keep_the_best_checkpoint() {
     assert!(
         sent.contains("missing a score for category"),
         "an invalid critique is rejected back to the critic"
+    );
+    // The picture reached the critic as an image message, not as tool text.
+    let images: Vec<&str> = script
+        .received
+        .iter()
+        .flat_map(|r| r["messages"].as_array().cloned().unwrap_or_default())
+        .filter_map(|m| m["content"].as_array().cloned())
+        .flatten()
+        .filter_map(|part| part["image_url"]["url"].as_str().map(str::to_string))
+        .map(|url| {
+            if url.starts_with("data:image/png;base64,iVBOR") {
+                "png"
+            } else {
+                "other"
+            }
+        })
+        .collect();
+    assert!(images.contains(&"png"), "{images:?}");
+    assert!(
+        !sent.contains("image_png_base64"),
+        "the PNG left the tool message"
     );
     // Tools were offered with JSON schemas.
     let first = &script.received[0];

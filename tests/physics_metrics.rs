@@ -51,7 +51,7 @@ fn col_counts_a_known_penetration() {
         Pose::from_xyz(0.097, 2.0, 0.5),
         floor(),
     );
-    let m = evaluate(&state, None, None, &no_stb()).unwrap();
+    let m = evaluate(&state, None, &no_stb()).unwrap();
     assert_eq!(m.col.objects, 4);
     assert_eq!(m.col.colliding, vec!["block_0", "block_1", "block_3"]);
     assert!((m.col.percent - 75.0).abs() < 1e-9);
@@ -65,7 +65,7 @@ fn col_counts_a_known_penetration() {
 #[test]
 fn nav_sees_a_room_cut_in_two_and_oob_sees_an_object_through_the_wall() {
     let mut state = room(4.0, 3.0);
-    let open = evaluate(&state, None, None, &no_stb()).unwrap();
+    let open = evaluate(&state, None, &no_stb()).unwrap();
     assert!((open.nav.ratio - 1.0).abs() < 1e-9);
     let free = open.nav.rooms[0].free_area_m2;
     // Eroded by 0.25 m: (4 - 0.5) x (3 - 0.5).
@@ -82,7 +82,7 @@ fn nav_sees_a_room_cut_in_two_and_oob_sees_an_object_through_the_wall() {
             floor(),
         );
     }
-    let cut = evaluate(&state, None, None, &no_stb()).unwrap();
+    let cut = evaluate(&state, None, &no_stb()).unwrap();
     let room = &cut.nav.rooms[0];
     assert_eq!(room.regions, 2, "{room:?}");
     // Left part x in [0.25, 1.1], right part [1.9, 3.75]; both 2.5 m deep.
@@ -105,7 +105,7 @@ fn nav_sees_a_room_cut_in_two_and_oob_sees_an_object_through_the_wall() {
         Pose::from_xyz(4.0, 1.5, 0.0),
         floor(),
     );
-    let m = evaluate(&state, None, None, &no_stb()).unwrap();
+    let m = evaluate(&state, None, &no_stb()).unwrap();
     assert_eq!(m.oob.outside, vec![out]);
     assert!((m.oob.percent - 100.0 / 7.0).abs() < 1e-9);
 }

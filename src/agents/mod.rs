@@ -21,4 +21,4 @@ pub use critique::{CategorySpec, Critique, Issue, Score};
 pub use orchestrator::{
     BuiltinOrchestrator, Decision, Orchestrator, StageConfig, StageOutcome, StageSpec, run_stage,
 };
-pub use tool::{Access, Role, ToolCallRecord, ToolError, ToolErrorKind, Toolbox};
+pub use tool::{Access, ImageObservation, Role, ToolCallRecord, ToolError, ToolErrorKind, Toolbox};

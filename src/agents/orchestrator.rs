@@ -81,6 +81,9 @@ pub struct Checkpoint<S> {
     pub critique: Critique,
     /// The critique of the checkpoint it was derived from.
     pub previous: Option<Critique>,
+    /// Rolled back from: a category or the sum dropped against `previous`. Never kept, even
+    /// when its total is the highest (a gain in one category does not buy a loss in another).
+    pub regressed: bool,
 }
 
 /// What the orchestrator sees when deciding.
@@ -313,12 +316,6 @@ pub fn run_stage<S: Clone>(
                     total: critique.total(),
                     critique: critique.clone(),
                 });
-                checkpoints.push(Checkpoint {
-                    state: current.clone(),
-                    critique: critique.clone(),
-                    previous: previous.clone(),
-                });
-                changed = false;
                 let regression = previous.as_ref().and_then(|p| {
                     critique.regression_from(
                         p,
@@ -326,6 +323,13 @@ pub fn run_stage<S: Clone>(
                         config.rollback_sum_drop,
                     )
                 });
+                checkpoints.push(Checkpoint {
+                    state: current.clone(),
+                    critique: critique.clone(),
+                    previous: previous.clone(),
+                    regressed: regression.is_some() && baseline.is_some(),
+                });
+                changed = false;
                 match (regression, baseline) {
                     (Some(reason), Some(back)) => {
                         current = checkpoints[back].state.clone();
@@ -364,11 +368,13 @@ pub fn run_stage<S: Clone>(
         }
     }
 
-    // The kept result: the best critiqued checkpoint (latest on ties); a state that was never
-    // critiqued only when there is no checkpoint at all.
+    // The kept result: the best critiqued checkpoint that was not rolled back from (latest on
+    // ties); a state that was never critiqued only when there is no checkpoint at all. The
+    // first checkpoint never regresses, so there is always a candidate.
     let kept = checkpoints
         .iter()
         .enumerate()
+        .filter(|(_, c)| !c.regressed)
         .max_by_key(|(i, c)| (c.critique.total(), *i))
         .map(|(i, _)| i);
     log.events.push(LogEvent::StageEnd {
@@ -555,6 +561,122 @@ mod tests {
         )
         .unwrap();
         assert_eq!(out.state, 7);
+        assert_eq!(out.kept, Some(0));
+    }
+
+    /// Two categories: "closeness" to 7 and "evenness" (10 for even values, 7 for odd ones).
+    struct TwoCategories;
+    impl Critic<i32> for TwoCategories {
+        fn critique(
+            &mut self,
+            s: &mut i32,
+            cx: &mut AgentCx<'_, i32>,
+        ) -> Result<Critique, AgentError> {
+            let v = cx.call(s, Role::Critic, "get", json!({})).unwrap()["value"]
+                .as_i64()
+                .unwrap() as i32;
+            let score = |category: &str, score: i32| Score {
+                category: category.into(),
+                score: score.clamp(0, 10) as u8,
+                reason: format!("value {v}"),
+            };
+            Ok(Critique {
+                scores: vec![
+                    score("closeness", 10 - (v - 7).abs()),
+                    score("evenness", if v % 2 == 0 { 10 } else { 7 }),
+                ],
+                issues: vec![],
+            })
+        }
+    }
+
+    #[test]
+    fn a_higher_total_does_not_keep_a_category_drop() {
+        let cats = [
+            CategorySpec::new("closeness", "close to 7"),
+            CategorySpec::new("evenness", "even"),
+        ];
+        let tb = toolbox();
+        let spec = StageSpec {
+            name: "toy",
+            categories: &cats,
+            toolbox: &tb,
+            brief: "",
+        };
+        // 5: 8 + 7 = 15. Then 8: 9 + 10 = 19, no drop: kept as the new baseline. Then 7:
+        // 10 + 7 = 17 (evenness -3: rollback). Then 9: 8 + 7 = 15 (rollback again).
+        // Then 4: 7 + 10 = 17: sum dropped by 2 against 8: rollback.
+        let mut designer = Scripted(vec![5, 8, 7, 9, 4], vec![]);
+        let config = StageConfig {
+            max_rounds: 5,
+            early_finish_min_score: 11,
+            ..StageConfig::default()
+        };
+        let mut log = RunLog::default();
+        let out = run_stage(
+            &spec,
+            0,
+            &mut designer,
+            &mut TwoCategories,
+            &mut BuiltinOrchestrator::default(),
+            &config,
+            &mut log,
+        )
+        .unwrap();
+        assert_eq!(out.state, 8);
+        assert_eq!(out.kept, Some(1));
+
+        // A regressed checkpoint is not kept even when its total is the highest.
+        struct Tradeoff;
+        impl Critic<i32> for Tradeoff {
+            fn critique(
+                &mut self,
+                s: &mut i32,
+                _cx: &mut AgentCx<'_, i32>,
+            ) -> Result<Critique, AgentError> {
+                // value 1: (5, 5); value 2: (9, 3): the total rises by 2, "b" drops by 2.
+                let (a, b) = if *s == 1 { (5, 5) } else { (9, 3) };
+                let score = |category: &str, score: u8| Score {
+                    category: category.into(),
+                    score,
+                    reason: String::new(),
+                };
+                Ok(Critique {
+                    scores: vec![score("a", a), score("b", b)],
+                    issues: vec![],
+                })
+            }
+        }
+        let cats = [CategorySpec::new("a", "a"), CategorySpec::new("b", "b")];
+        let spec = StageSpec {
+            name: "tradeoff",
+            categories: &cats,
+            toolbox: &tb,
+            brief: "",
+        };
+        let mut designer = Scripted(vec![1, 2], vec![]);
+        let config = StageConfig {
+            max_rounds: 2,
+            early_finish_min_score: 11,
+            ..StageConfig::default()
+        };
+        let out = run_stage(
+            &spec,
+            0,
+            &mut designer,
+            &mut Tradeoff,
+            &mut BuiltinOrchestrator::default(),
+            &config,
+            &mut log,
+        )
+        .unwrap();
+        assert_eq!(out.history.len(), 2);
+        assert_eq!(
+            out.history[1].total(),
+            12,
+            "the regressed checkpoint scores higher"
+        );
+        assert_eq!(out.state, 1);
         assert_eq!(out.kept, Some(0));
     }
 }

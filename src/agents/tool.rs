@@ -14,6 +14,27 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
 
+/// The result of an observation tool that returns a picture (a plan, a room view), for agents
+/// with image input. The LLM backend moves the PNG out of the tool result into an image
+/// message (tool messages carry text only); the built-in agents do not ask for pictures.
+#[derive(Debug, Serialize, JsonSchema)]
+pub struct ImageObservation {
+    /// What the picture shows.
+    pub description: String,
+    /// The PNG, base64 (the key is [`crate::agents::llm::IMAGE_KEY`]).
+    pub image_png_base64: String,
+}
+
+impl ImageObservation {
+    /// A picture from PNG bytes.
+    pub fn new(description: impl Into<String>, png: &[u8]) -> ImageObservation {
+        ImageObservation {
+            description: description.into(),
+            image_png_base64: crate::util::base64::encode(png),
+        }
+    }
+}
+
 /// What a tool may do, which decides who may call it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Hash, PartialOrd, Ord)]
 #[serde(rename_all = "snake_case")]

@@ -4,7 +4,7 @@
 //! |---|---|
 //! | counts | objects in total, per kind, per room, per category (architecture excluded) |
 //! | COL | percent of objects penetrating another object or a wall/floor by more than 1 mm; mean and max depth of those pairs (parry3d on the convex collision pieces) |
-//! | STB | percent of free objects that move < 1 cm and rotate < 0.1 rad in a 5 s simulation at 1 ms (Drake, scene as written: wall/ceiling objects welded, furniture and small objects free; see [`StabilityOptions::stop_at_rest`] for the early stop) |
+//! | STB | percent of free objects that move < 1 cm and rotate < 0.1 rad in a 5 s simulation at 1 ms (Drake, scene as written: wall/ceiling objects welded, furniture and small objects free; simulated per island of touching objects, see [`stability`]; [`StabilityOptions::stop_at_rest`] for the early stop) |
 //! | MD, XD, MR | mean displacement (mm), max displacement (m), mean rotation (rad) of the free objects in that simulation |
 //! | NAV | largest connected free floor region / all free floor, for a round robot (radius configurable) |
 //! | OOB | percent of objects with geometry outside their room's floor polygon |
@@ -15,6 +15,7 @@
 
 pub mod coverage;
 pub mod floor;
+pub mod stability;
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -23,10 +24,10 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::formats::FormatError;
-use crate::formats::scene_dir::{self, names};
+use crate::formats::scene_dir;
 use crate::physics::as_written::posed_objects;
 use crate::physics::collision::penetrating_pairs;
-use crate::physics::settle::{ContactOptions, SettleOptions, parse_result, request_args};
+use crate::physics::settle::ContactOptions;
 use crate::physics::{BridgePool, PhysicsError};
 use crate::prompt;
 use crate::scene::ObjectKind;
@@ -35,6 +36,7 @@ use crate::util::fsx::write_atomic;
 
 pub use coverage::{Coverage, Requirement};
 pub use floor::{Nav, NavRoom, Oob};
+pub use stability::stability;
 
 /// Version of the `metrics.json` layout.
 pub const METRICS_VERSION: u32 = 1;
@@ -189,8 +191,12 @@ pub struct Stability {
     pub mr_rad: f64,
     /// Everything was at rest at the end.
     pub at_rest_at_end: bool,
-    /// Seconds actually simulated (less than the duration after an early stop at rest).
+    /// Seconds actually simulated (less than the duration after an early stop at rest); the
+    /// longest island.
     pub simulated_s: f64,
+    /// Islands simulated separately (free objects that touch or rest on each other).
+    #[serde(default)]
+    pub islands: usize,
     /// The objects that failed.
     pub unstable: Vec<Unstable>,
 }
@@ -279,83 +285,16 @@ fn col(
     }
 }
 
-/// Runs the stability simulation of the scene written in `dir` on the pool.
-pub fn stability(
-    dir: &Path,
-    pool: &BridgePool,
-    opts: &StabilityOptions,
-) -> Result<Stability, EvalError> {
-    let settle = SettleOptions {
-        max_time: opts.duration_s,
-        time_step: opts.time_step_s,
-        stop_at_rest: opts.stop_at_rest,
-        rest_speed: opts.rest_speed,
-        rest_angular_speed: opts.rest_angular_speed,
-        rest_time: opts.rest_time,
-        contact: opts.contact,
-        wall_limit: 3600.0,
-        ..SettleOptions::default()
-    };
-    let (op, args) = request_args(
-        &dir.join(names::DIRECTIVES),
-        &dir.join(names::PACKAGE_XML),
-        &settle,
-    );
-    let result = parse_result(&op, pool.request(&op, args).map_err(PhysicsError::from)?)?;
-    let n = result.motion.len();
-    // After an early stop at rest, the most the remaining time could add.
-    let left = (opts.duration_s - result.sim_time).max(0.0);
-    let (extra_d, extra_r) = if result.at_rest {
-        (left * opts.rest_speed, left * opts.rest_angular_speed)
-    } else {
-        (0.0, 0.0)
-    };
-    let mut unstable = Vec::new();
-    let (mut sum_d, mut sum_r, mut max_d) = (0.0, 0.0, 0.0f64);
-    for (id, m) in &result.motion {
-        sum_d += m.displacement_m;
-        sum_r += m.rotation_rad;
-        max_d = max_d.max(m.displacement_m);
-        let (d, r) = (m.displacement_m + extra_d, m.rotation_rad + extra_r);
-        if !(d < opts.max_displacement_m && r < opts.max_rotation_rad) {
-            unstable.push(Unstable {
-                id: id.clone(),
-                displacement_m: d,
-                rotation_rad: r,
-            });
-        }
-    }
-    let mean = |s: f64| if n == 0 { 0.0 } else { s / n as f64 };
-    Ok(Stability {
-        options: *opts,
-        free_objects: n,
-        stable: n - unstable.len(),
-        percent: if n == 0 {
-            100.0
-        } else {
-            100.0 * (n - unstable.len()) as f64 / n as f64
-        },
-        md_mm: 1e3 * mean(sum_d),
-        xd_m: max_d,
-        mr_rad: mean(sum_r),
-        at_rest_at_end: result.at_rest,
-        simulated_s: result.sim_time,
-        unstable,
-    })
-}
-
-/// Metrics of a scene held in memory; `dir` is where it is written (needed for STB, which also
-/// needs a pool and `opts.stability`).
+/// Metrics of a scene held in memory (STB needs a pool and `opts.stability`).
 pub fn evaluate(
     state: &SceneState,
-    dir: Option<&Path>,
     pool: Option<&BridgePool>,
     opts: &EvalOptions,
 ) -> Result<Metrics, EvalError> {
     let posed = posed_objects(&state.scene, &state.assets);
     let reading = prompt::read(&state.scene.provenance.prompt);
-    let stb = match (dir, pool, &opts.stability) {
-        (Some(dir), Some(pool), Some(s)) => Some(stability(dir, pool, s)?),
+    let stb = match (pool, &opts.stability) {
+        (Some(pool), Some(s)) => Some(stability(state, pool, s)?),
         _ => None,
     };
     Ok(Metrics {
@@ -381,7 +320,7 @@ pub fn evaluate_dir(
     opts: &EvalOptions,
 ) -> Result<Metrics, EvalError> {
     let state = scene_dir::load_state(dir)?;
-    evaluate(&state, Some(dir), pool, opts)
+    evaluate(&state, pool, opts)
 }
 
 /// Writes `metrics.json` into `dir` atomically.
@@ -428,15 +367,16 @@ pub fn table(m: &Metrics) -> String {
             rows.push((
                 "STB".into(),
                 format!(
-                    "{:.1} % of {} free objects stable over {:.1} s (< {:.0} mm, < {:.2} rad){}",
+                    "{:.1} % of {} free objects stable over {:.1} s (< {:.0} mm, < {:.2} rad; {} islands){}",
                     s.percent,
                     s.free_objects,
                     s.options.duration_s,
                     s.options.max_displacement_m * 1e3,
                     s.options.max_rotation_rad,
+                    s.islands,
                     if s.simulated_s + 1e-9 < s.options.duration_s {
                         format!(
-                            "; at rest after {:.2} s, remaining motion bounded",
+                            "; every island at rest by {:.2} s, remaining motion bounded",
                             s.simulated_s
                         )
                     } else {

@@ -4,7 +4,7 @@
 //! A wall with openings becomes boxes: full-height pieces between openings, a lintel above each
 //! door, and wall below and above each window. Open connections leave the span empty.
 
-use crate::assets::{Asset, LinkBuilder, material};
+use crate::assets::{Asset, LinkBuilder, Texture, material, textures};
 use crate::geometry::{ConvexPiece, GeometryError, mesh, polygon};
 use crate::scene::{OpeningKind, Pose, Room, Wall};
 
@@ -110,8 +110,25 @@ fn slab_ring(room: &Room) -> Vec<[f64; 2]> {
     ]
 }
 
+/// The tileable texture of a room surface material (planks, tiles, carpet, plaster, ...) and
+/// the mesh mapped onto it at the texture's real-world repeat. The texture depends on the
+/// material name only, so a floor and walls of the same material share one image.
+fn textured(mesh: mesh::TriMesh, material: &str) -> (mesh::TriMesh, Texture) {
+    let seed = u64::from_le_bytes(
+        blake3::hash(material.as_bytes()).as_bytes()[..8]
+            .try_into()
+            .unwrap_or([0; 8]),
+    );
+    let surface = textures::surface_texture(material, seed);
+    (
+        mesh.with_box_uvs(surface.metres_per_repeat),
+        surface.texture,
+    )
+}
+
 /// Builds the static architecture asset of a room: link `floor` (slab) and link `walls` (the
-/// walls this room owns; rooms are axis-aligned rectangles).
+/// walls this room owns; rooms are axis-aligned rectangles). Floors and walls are textured
+/// with their room's materials (wood planks, tiles, carpet, plaster, marble, ...).
 pub fn build_room_asset(room: &Room, asset_id: &str) -> Result<Asset, GeometryError> {
     let floor_mat = material::material_or_default(&room.floor_material);
     let wall_mat = material::material_or_default(&room.wall_material);
@@ -120,10 +137,11 @@ pub fn build_room_asset(room: &Room, asset_id: &str) -> Result<Asset, GeometryEr
     let ring = slab_ring(room);
     for part in polygon::convex_parts(&ring)? {
         floor.add_collision(ConvexPiece::prism(&part, -FLOOR_THICKNESS, 0.0)?);
-        floor.add_visual(
+        let (visual, texture) = textured(
             mesh::prism_mesh(&part, -FLOOR_THICKNESS, 0.0),
-            floor_mat.color,
+            &room.floor_material,
         );
+        floor.add_textured_visual(visual, texture);
     }
 
     let mut walls = LinkBuilder::new("walls", Pose::IDENTITY, wall_mat);
@@ -138,10 +156,11 @@ pub fn build_room_asset(room: &Room, asset_id: &str) -> Result<Asset, GeometryEr
             let piece = ConvexPiece::cuboid(center, size)?.transformed(&world_from_wall);
             walls.add_collision(piece);
             wall_pieces_built += 1;
-            walls.add_visual(
+            let (visual, texture) = textured(
                 mesh::box_mesh(center, size).transformed(&world_from_wall),
-                wall_mat.color,
+                &room.wall_material,
             );
+            walls.add_textured_visual(visual, texture);
         }
     }
 

@@ -14,6 +14,7 @@
 
 pub mod camera;
 pub mod draw;
+pub mod gallery;
 pub mod image;
 pub mod labels;
 pub mod plan;
@@ -68,6 +69,9 @@ pub enum RenderError {
     /// There is nothing to draw.
     #[error("nothing to render: {0}")]
     Empty(String),
+    /// Geometry to draw could not be built (e.g. a room's architecture).
+    #[error(transparent)]
+    Geometry(#[from] crate::geometry::GeometryError),
 }
 
 /// Loads the scene directory `dir` ([`load_state`](crate::formats::scene_dir::load_state))

@@ -55,6 +55,23 @@ fn pale(c: [f32; 3]) -> [f32; 3] {
 }
 
 /// XY bounds of the plan: rooms (walls included) or, without rooms, all geometry.
+/// The mean linear colour of a mesh: its colour times its texture's mean (textured floors
+/// are drawn flat in the plan).
+fn mean_color(m: &super::scene::RenderMesh) -> [f32; 3] {
+    let Some(t) = &m.texture else {
+        return m.color;
+    };
+    let mut sum = [0.0f64; 3];
+    let texels = t.rgba.chunks_exact(4);
+    let n = texels.len().max(1) as f64;
+    for px in texels {
+        for k in 0..3 {
+            sum[k] += (f64::from(px[k]) / 255.0).powf(2.2);
+        }
+    }
+    [0, 1, 2].map(|k| m.color[k] * (sum[k] / n) as f32)
+}
+
 fn plan_bounds(rs: &RenderScene) -> Option<([f64; 2], [f64; 2])> {
     let mut pts: Vec<[f64; 2]> = Vec::new();
     for r in &rs.rooms {
@@ -111,7 +128,7 @@ pub fn plan_view(rs: &RenderScene, opts: &PlanOptions) -> Result<Image, RenderEr
             // (a wooden table on a wooden floor) still stands out.
             Role::Floor => DrawItem {
                 mesh: m,
-                color: Some(pale(m.color)),
+                color: Some(pale(mean_color(m))),
                 unlit: true,
                 receives_shadow: true,
             },
@@ -282,10 +299,12 @@ fn draw_room_label(
     let area = polygon::signed_area(&room.floor_polygon).abs();
     let title = format!("{} ({})", room.room_type, room.id);
     let sub = format!(
-        "{:.1} x {:.1} m, {:.1} m\u{b2}",
+        "{:.1} x {:.1} m, {:.1} m\u{b2}; {} floor, {} walls",
         hi[0] - lo[0],
         hi[1] - lo[1],
-        area
+        area,
+        room.floor_material,
+        room.wall_material
     );
     let (t_px, s_px) = (16.0, 12.0);
     let mt = measure(&title, t_px)?;

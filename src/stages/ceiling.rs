@@ -67,6 +67,9 @@ pub struct HangAboveArgs {
 pub struct HangResult {
     /// The new object.
     pub placed: Option<ObjectInfo>,
+    /// Remarks (a generic stand-in for an unknown noun, parts for another stage).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
 }
 
 fn try_hang(
@@ -138,6 +141,7 @@ fn hang(state: &mut StageState, a: HangArgs) -> Result<HangResult, ToolError> {
     let id = try_hang(state, &routed, frame.to_world(a.x, a.y), None)?;
     Ok(HangResult {
         placed: object_info(state, &frame, &id),
+        notes: routed.notes.clone(),
     })
 }
 
@@ -156,6 +160,7 @@ fn hang_above(state: &mut StageState, a: HangAboveArgs) -> Result<HangResult, To
     let id = try_hang(state, &routed, tfp.center, Some(&a.target))?;
     Ok(HangResult {
         placed: object_info(state, &frame, &id),
+        notes: routed.notes.clone(),
     })
 }
 
@@ -194,12 +199,9 @@ impl Designer<StageState> for BuiltinCeilingDesigner {
                 .count
                 .saturating_sub(common::present_count(state, &want.noun));
             if let Arrangement::Above { target } = &want.arrangement {
-                let cat = StageState::category_of(target)
-                    .unwrap_or(target)
-                    .to_string();
                 let ids: Vec<String> = state
                     .room_objects()
-                    .filter(|o| o.category == cat)
+                    .filter(|o| StageState::names(target, &o.category))
                     .map(|o| o.id.clone())
                     .collect();
                 for t in ids {

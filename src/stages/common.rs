@@ -140,9 +140,7 @@ pub fn round3(v: f64) -> f64 {
 pub fn present_count(state: &StageState, noun: &str) -> u32 {
     state
         .room_objects()
-        .filter(|o| {
-            o.category == noun || StageState::category_of(noun) == Some(o.category.as_str())
-        })
+        .filter(|o| StageState::names(noun, &o.category))
         .count() as u32
 }
 
@@ -448,6 +446,53 @@ fn check_reachability(state: &mut StageState, a: ReachArgs) -> Result<Reachabili
     reachability(state, r)
 }
 
+/// Arguments of `render_room_image`.
+#[derive(Debug, Deserialize, JsonSchema, Default)]
+pub struct ImageArgs {
+    /// `plan` (top-down, the default) or `corner_0` .. `corner_3` (perspective from a room
+    /// corner at eye height, near walls cut away).
+    #[serde(default)]
+    pub view: Option<String>,
+}
+
+fn render_room_image(
+    state: &mut StageState,
+    a: ImageArgs,
+) -> Result<crate::agents::ImageObservation, ToolError> {
+    let view = a.view.as_deref().unwrap_or("plan");
+    let failed = |e: crate::render::RenderError| ToolError::failed(e.to_string());
+    let (description, image) = if view == "plan" {
+        (
+            "top-down plan: walls, doors with their swing, windows, every object labelled \
+             with its id, scale bar in metres"
+                .to_string(),
+            crate::render::top_view(&state.scene).map_err(failed)?,
+        )
+    } else {
+        let k: usize = view
+            .strip_prefix("corner_")
+            .and_then(|k| k.parse().ok())
+            .ok_or_else(|| ToolError::bad_args("view must be plan or corner_0 .. corner_3"))?;
+        let opts = crate::render::views::RoomViewOptions {
+            width: 800,
+            height: 600,
+            ..Default::default()
+        };
+        let views =
+            crate::render::room_views_of(&state.scene, &state.room, &opts).map_err(failed)?;
+        let (name, image) = views
+            .into_iter()
+            .nth(k)
+            .ok_or_else(|| ToolError::bad_args(format!("the room has no corner view {k}")))?;
+        (
+            format!("{name}: perspective from a room corner, objects labelled with their ids"),
+            image,
+        )
+    };
+    let png = image.encode_png().map_err(failed)?;
+    Ok(crate::agents::ImageObservation::new(description, &png))
+}
+
 /// Registers the shared tools.
 pub fn register(t: &mut Toolbox<StageState>) {
     t.add(
@@ -456,6 +501,13 @@ pub fn register(t: &mut Toolbox<StageState>) {
          position (room metres), rotation and size, and which requested objects are present.",
         Access::Observe,
         observe_room,
+    );
+    t.add(
+        "render_room_image",
+        "A picture of the room (PNG): the top-down plan with every object labelled, or a \
+         perspective view from one of the room's corners.",
+        Access::Observe,
+        render_room_image,
     );
     t.add(
         "move_object",

@@ -220,7 +220,7 @@ fn place_object(state: &mut StageState, a: PlaceArgs) -> Result<PlaceResult, Too
     let room = state.room()?.clone();
     let frame = RoomFrame::new(&room);
     let id = try_place(state, &routed, room_pose(&frame, a.x, a.y, a.yaw_deg))?;
-    result_for(state, &[id], vec![])
+    result_for(state, &[id], routed.notes.clone())
 }
 
 /// Free positions along `wall` for an object of bounds `rec`, nearest to `along` first.
@@ -279,7 +279,7 @@ fn place_against_wall(state: &mut StageState, a: WallArgs) -> Result<PlaceResult
     for wall in walls {
         if let Some(pose) = wall_candidates(state, wall, &rec, a.along_m)? {
             let id = try_place(state, &routed, pose)?;
-            return result_for(state, &[id], vec![]);
+            return result_for(state, &[id], routed.notes.clone());
         }
     }
     Err(ToolError::failed(format!(
@@ -361,7 +361,7 @@ fn place_in_corner(state: &mut StageState, a: CornerArgs) -> Result<PlaceResult,
         let fp = Footprint::of(&rec, &pose);
         if fp.inside(&room.floor_polygon) && !obstacles.iter().any(|(_, o)| o.overlaps(&fp, GAP)) {
             let id = try_place(state, &routed, pose)?;
-            return result_for(state, &[id], vec![]);
+            return result_for(state, &[id], routed.notes.clone());
         }
     }
     Err(ToolError::failed(format!(
@@ -407,7 +407,7 @@ fn place_in_center(state: &mut StageState, a: CenterArgs) -> Result<PlaceResult,
             } else {
                 vec![]
             };
-            return result_for(state, &[id], notes);
+            return result_for(state, &[id], [routed.notes.clone(), notes].concat());
         }
     }
     Err(ToolError::failed(format!(
@@ -511,7 +511,7 @@ fn place_around(state: &mut StageState, a: AroundArgs) -> Result<PlaceResult, To
     if ids.is_empty() {
         return Err(ToolError::failed(notes.join("; ")));
     }
-    result_for(state, &ids, notes)
+    result_for(state, &ids, [routed.notes.clone(), notes].concat())
 }
 
 fn place_facing(state: &mut StageState, a: FacingArgs) -> Result<PlaceResult, ToolError> {
@@ -536,7 +536,7 @@ fn place_facing(state: &mut StageState, a: FacingArgs) -> Result<PlaceResult, To
         let yaw = wrap_angle(yaw_facing(p, tfp.center));
         let pose = Pose::from_xyz_yaw(p[0], p[1], 0.0, yaw);
         match try_place(state, &routed, pose) {
-            Ok(id) => return result_for(state, &[id], vec![]),
+            Ok(id) => return result_for(state, &[id], routed.notes.clone()),
             Err(e) => tried.push(e.message),
         }
     }

@@ -102,10 +102,9 @@ impl BuiltinFurnitureDesigner {
     }
 
     fn present(state: &StageState, noun: &str) -> Vec<String> {
-        let cat = StageState::category_of(noun).unwrap_or(noun).to_string();
         state
             .room_objects()
-            .filter(|o| o.category == cat)
+            .filter(|o| StageState::names(noun, &o.category))
             .map(|o| o.id.clone())
             .collect()
     }
@@ -201,7 +200,7 @@ impl BuiltinFurnitureDesigner {
             };
             let is_explicit = explicit
                 .iter()
-                .any(|n| StageState::category_of(n) == Some(obj.category.as_str()));
+                .any(|n| StageState::names(n, &obj.category));
             let _ = cx.call(state, Role::Designer, "remove_object", json!({"id": id}));
             if is_explicit {
                 // Re-place a requested piece somewhere else; drop a default one.

@@ -61,6 +61,20 @@ impl SurfaceRef {
         format!("{}/{}", self.parent.id, self.surface.id)
     }
 
+    /// Behind a door or in a drawer: a surface of a moving link (a drawer), or any surface
+    /// but the top of an articulated piece (shelves behind its doors).
+    pub fn enclosed(&self, state: &StageState) -> bool {
+        state
+            .scene
+            .scene
+            .assets
+            .get(&self.parent.asset)
+            .is_some_and(|rec| {
+                self.surface.link != rec.root_link
+                    || (!rec.joints.is_empty() && self.surface.id != "top")
+            })
+    }
+
     /// World pose of the surface frame (origin at its centre, on the surface).
     pub fn world_from_surface(&self) -> Pose {
         let c = self.surface.center;
@@ -391,7 +405,7 @@ fn place_on_surface(state: &mut StageState, a: PlaceArgs) -> Result<PlaceResult,
     )
     .map_err(ToolError::failed)?;
     let id = add_item(state, &routed, pose, &s.parent.id, &s.surface.id);
-    result_for(state, &[id], vec![])
+    result_for(state, &[id], routed.notes.clone())
 }
 
 fn place_stack(state: &mut StageState, a: GroupArgs) -> Result<PlaceResult, ToolError> {
@@ -423,7 +437,7 @@ fn place_stack(state: &mut StageState, a: GroupArgs) -> Result<PlaceResult, Tool
     } else {
         vec![]
     };
-    result_for(state, &ids, notes)
+    result_for(state, &ids, [routed.notes.clone(), notes].concat())
 }
 
 /// Places `count` copies in layers over a surface (piles and fills).
@@ -534,7 +548,7 @@ fn place_pile(state: &mut StageState, a: GroupArgs) -> Result<PlaceResult, ToolE
     } else {
         vec![]
     };
-    result_for(state, &ids, notes)
+    result_for(state, &ids, [routed.notes.clone(), notes].concat())
 }
 
 /// Fill a container.
@@ -603,7 +617,7 @@ fn place_inside(state: &mut StageState, a: FillArgs) -> Result<PlaceResult, Tool
     } else {
         vec![]
     };
-    result_for(state, &ids, notes)
+    result_for(state, &ids, [routed.notes.clone(), notes].concat())
 }
 
 /// Item offsets of a place setting: (u across, v towards the table centre) from the edge
@@ -690,6 +704,11 @@ fn place_settings(state: &mut StageState, a: SettingsArgs) -> Result<PlaceResult
                     continue;
                 }
             };
+            for n in &routed.notes {
+                if !notes.contains(n) {
+                    notes.push(n.clone());
+                }
+            }
             let rec = state.scene.scene.assets[&routed.asset].clone();
             let (du, dv, yaw) = setting_offset(&routed.category);
             // Rotate the (across, inward) offset into the surface frame.
@@ -736,6 +755,8 @@ pub struct SurfaceInfo {
     pub objects: Vec<String>,
     /// Fraction of its area covered.
     pub occupancy: f64,
+    /// Behind a door or in a drawer (out of sight; a robot opens it first).
+    pub enclosed: bool,
 }
 
 /// Surfaces to inspect.
@@ -792,6 +813,7 @@ fn observe_surfaces(
                 height_m: common::round3(s.world_from_surface().translation().z),
                 clearance_m: common::round3(s.surface.clearance),
                 occupancy: common::round3((covered / area.max(1e-9)).min(1.0)),
+                enclosed: s.enclosed(state),
                 objects,
             }
         })

@@ -15,7 +15,6 @@ use crate::scene::ObjectKind;
 pub struct BuiltinManipulandDesigner;
 
 fn count_on(state: &StageState, entity: &str, noun: &str) -> u32 {
-    let cat = StageState::category_of(noun).unwrap_or(noun).to_string();
     items_on(state, entity)
         .iter()
         .filter(|id| {
@@ -23,19 +22,27 @@ fn count_on(state: &StageState, entity: &str, noun: &str) -> u32 {
                 .scene
                 .scene
                 .object(id)
-                .is_some_and(|o| o.category == cat)
+                .is_some_and(|o| StageState::names(noun, &o.category))
         })
         .count() as u32
 }
 
-/// The entity's surface keys in filling order: shelf levels bottom-up, then tops, then others.
-fn surface_order(state: &StageState, entity: &str) -> Vec<String> {
-    let mut list: Vec<(String, f64)> = surfaces(state, Some(entity))
+/// The entity's surface keys in two tiers, each bottom-up: the open ones (tops, open shelves),
+/// then the enclosed ones (behind doors, in drawers), which get what the open ones cannot
+/// hold: a kitchen counter's appliances stand on its top, not in its cupboards.
+fn surface_tiers(state: &StageState, entity: &str) -> [Vec<String>; 2] {
+    let mut list: Vec<(bool, f64, String)> = surfaces(state, Some(entity))
         .iter()
-        .map(|s| (s.key(), s.surface.center[2]))
+        .map(|s| (s.enclosed(state), s.surface.center[2], s.key()))
         .collect();
     list.sort_by(|a, b| a.1.total_cmp(&b.1));
-    list.into_iter().map(|(k, _)| k).collect()
+    let tier = |enclosed: bool| {
+        list.iter()
+            .filter(|(e, _, _)| *e == enclosed)
+            .map(|(_, _, k)| k.clone())
+            .collect()
+    };
+    [tier(false), tier(true)]
 }
 
 impl BuiltinManipulandDesigner {
@@ -52,7 +59,8 @@ impl BuiltinManipulandDesigner {
         if need == 0 {
             return;
         }
-        let order = surface_order(state, entity);
+        let tiers = surface_tiers(state, entity);
+        let order: Vec<String> = tiers.concat();
         match &want.arrangement {
             Arrangement::Stack | Arrangement::Pile => {
                 let tool = if want.arrangement == Arrangement::Stack {
@@ -78,7 +86,7 @@ impl BuiltinManipulandDesigner {
             Arrangement::Inside { parent } => {
                 let containers: Vec<String> = state
                     .room_objects()
-                    .filter(|o| StageState::category_of(parent) == Some(o.category.as_str()))
+                    .filter(|o| StageState::names(parent, &o.category))
                     .map(|o| o.id.clone())
                     .collect();
                 for c in containers {
@@ -98,20 +106,32 @@ impl BuiltinManipulandDesigner {
             }
             _ => {}
         }
-        for key in &order {
-            for flat in [lay_flat_first, !lay_flat_first] {
-                while need > 0 {
-                    let r = cx.call(
-                        state,
-                        Role::Designer,
-                        "place_on_surface",
-                        json!({"description": want.description, "surface": key, "lay_flat": flat}),
-                    );
-                    if r.is_err() {
-                        break;
+        // One item per surface in turn, so the levels of a shelf share the items (a bookcase
+        // is not stacked on its bottom shelf only); a surface leaves the turn once full.
+        for tier in tiers {
+            let mut live = tier;
+            while need > 0 && !live.is_empty() {
+                let mut still = Vec::new();
+                for key in live {
+                    if need == 0 {
+                        still.push(key);
+                        continue;
                     }
-                    need -= 1;
+                    let placed = [lay_flat_first, !lay_flat_first].into_iter().any(|flat| {
+                        cx.call(
+                            state,
+                            Role::Designer,
+                            "place_on_surface",
+                            json!({"description": want.description, "surface": key, "lay_flat": flat}),
+                        )
+                        .is_ok()
+                    });
+                    if placed {
+                        need -= 1;
+                        still.push(key);
+                    }
                 }
+                live = still;
             }
         }
     }

@@ -205,6 +205,33 @@ fn router_context() -> &'static RouterContext {
     CONTEXT.get_or_init(RouterContext::from_env)
 }
 
+/// What the designer is told about a routed request besides the asset: the router's notes
+/// (generic stand-ins, clamped sizes, fallbacks), the parts of a composite, which this tool
+/// does not place, and parts that belong to a later stage.
+fn routing_notes(routed: &router::Routed) -> Vec<String> {
+    let mut notes = routed.notes.clone();
+    for part in &routed.parts {
+        notes.push(format!(
+            "{} {} go {} the {}: place them with their own call",
+            part.count,
+            part.category,
+            part.role.as_str(),
+            routed.primary.category
+        ));
+    }
+    for d in &routed.deferred {
+        notes.push(format!(
+            "{} \"{}\" belong to the {} stage ({} the {}): ask for them there",
+            d.count,
+            d.request.description,
+            d.request.stage.as_str(),
+            d.relation.as_str(),
+            routed.primary.category
+        ));
+    }
+    notes
+}
+
 /// An asset chosen for a description.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct RoutedAsset {
@@ -214,6 +241,10 @@ pub struct RoutedAsset {
     pub category: String,
     /// Size (x, y, z), metres.
     pub size: [f64; 3],
+    /// What the designer should know: a generic stand-in for an unknown noun, a clamped size,
+    /// parts of a composite to place next, parts for a later stage.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
 }
 
 /// The state a placement stage's tools work on: the scene, the room (and supporting entity)
@@ -238,19 +269,18 @@ impl StageState {
     /// The category a free-text description names: the longest phrase (up to three words)
     /// that resolves, preferring later words (the head noun comes last in English).
     pub fn category_of(description: &str) -> Option<&'static str> {
-        let tokens = crate::prompt::tokenize(description);
-        for len in (1..=3).rev() {
-            for start in (0..tokens.len().saturating_sub(len - 1)).rev() {
-                let mut words: Vec<String> = tokens[start..start + len].to_vec();
-                if let Some(last) = words.last_mut() {
-                    *last = crate::prompt::singular(last);
-                }
-                if let Some(c) = procedural::resolve_category(&words.join(" ")) {
-                    return Some(c);
-                }
-            }
-        }
-        None
+        router::parse::main_categories(description).first().copied()
+    }
+
+    /// True when an object of `category` is what `noun` asks for: a category the router can
+    /// build for it (at any stage), or the generic stand-in named after an unknown noun.
+    pub fn names(noun: &str, category: &str) -> bool {
+        category == noun
+            || category == crate::scene::sanitize_name(noun)
+            || router::parse::main_categories(noun).contains(&category)
+            || router::parse::phrase(noun)
+                .unknown_noun
+                .is_some_and(|u| crate::scene::sanitize_name(&u) == category)
     }
 
     /// Builds (or reuses) the asset for `description` through the asset router (attributes
@@ -262,10 +292,13 @@ impl StageState {
         description: &str,
         size: Option<[f64; 3]>,
     ) -> Result<RoutedAsset, ToolError> {
-        let category = Self::category_of(description);
+        let candidates = router::parse::main_categories(description);
+        let category = candidates.first().copied();
         if let (Some(category), Some(want)) = (category, self.kind.support())
             && let Some(prior) = procedural::prior(category)
-            && prior.support != want
+            && !candidates
+                .iter()
+                .any(|c| procedural::prior(c).is_some_and(|p| p.support == want))
         {
             return Err(ToolError::failed(format!(
                 "{category} is a {:?} object; place it in the {} stage, not the {} stage",
@@ -287,8 +320,9 @@ impl StageState {
         );
         let h = blake3::hash(key.as_bytes());
         let seed = u64::from_le_bytes(h.as_bytes()[..8].try_into().unwrap_or([0; 8]));
+        // The router reads the whole description: attributes, compounds ("fruit bowl": a
+        // bowl now, its fruit reported as parts to place), unknown nouns.
         let mut request = RouteRequest::new(description, stage, seed);
-        request.category = category.map(str::to_string);
         request.size = size;
         self.requests += 1;
         let routed = router::route(&request, router_context())
@@ -299,6 +333,7 @@ impl StageState {
                 routed.primary.category
             );
         }
+        let notes = routing_notes(&routed);
         let category = routed.primary.category.clone();
         let id = self
             .scene
@@ -308,6 +343,7 @@ impl StageState {
             asset: id,
             category,
             size: [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]],
+            notes,
         })
     }
 

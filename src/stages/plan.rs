@@ -297,6 +297,13 @@ fn covers(lex: &Lexicon, a: &str, b: &str) -> bool {
     is_kind(a, b) || is_kind(b, a)
 }
 
+/// Appliances, electronics and lamps: one per supporting piece unless the prompt asks for more.
+fn one_per_parent(lex: &Lexicon, noun: &str) -> bool {
+    ["appliance", "electronics", "lamp"]
+        .iter()
+        .any(|kind| covers(lex, noun, kind))
+}
+
 fn is_seat(lex: &Lexicon, noun: &str) -> bool {
     covers(lex, noun, "chair")
         || covers(lex, noun, "stool")

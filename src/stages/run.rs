@@ -287,7 +287,7 @@ fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String,
             .iter()
             .filter(|(_, cat)| {
                 group.parent == "any"
-                    || super::StageState::category_of(&group.parent) == Some(cat.as_str())
+                    || super::StageState::names(&group.parent, cat)
             })
             .collect();
         if hosts.is_empty() {

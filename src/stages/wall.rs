@@ -250,6 +250,9 @@ pub struct AboveArgs {
 pub struct MountResult {
     /// The new object.
     pub placed: Option<ObjectInfo>,
+    /// Remarks (a generic stand-in for an unknown noun, parts for another stage).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
 }
 
 fn free_length(state: &StageState, wall: &Wall) -> f64 {
@@ -284,6 +287,7 @@ fn mount(state: &mut StageState, a: MountArgs) -> Result<MountResult, ToolError>
             Ok(id) => {
                 return Ok(MountResult {
                     placed: object_info(state, &frame, &id),
+                    notes: routed.notes.clone(),
                 });
             }
             Err(e) => last = Some(e),
@@ -336,6 +340,7 @@ fn mount_above(state: &mut StageState, a: AboveArgs) -> Result<MountResult, Tool
     )?;
     Ok(MountResult {
         placed: object_info(state, &frame, &id),
+        notes: routed.notes.clone(),
     })
 }
 
@@ -350,10 +355,9 @@ pub fn toolbox() -> Toolbox<StageState> {
 
 /// Targets of an `Above` want present in the room.
 fn targets(state: &StageState, noun: &str) -> Vec<String> {
-    let cat = StageState::category_of(noun).unwrap_or(noun).to_string();
     state
         .room_objects()
-        .filter(|o| o.category == cat && o.kind == ObjectKind::Furniture)
+        .filter(|o| StageState::names(noun, &o.category) && o.kind == ObjectKind::Furniture)
         .map(|o| o.id.clone())
         .collect()
 }

@@ -1,4 +1,5 @@
 //! Small shared utilities.
 
+pub mod base64;
 pub mod fsx;
 pub mod png;

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-pub use agents::{LlmCritic, LlmDesigner, LlmOrchestrator, SharedTransport};
+pub use agents::{IMAGE_KEY, LlmCritic, LlmDesigner, LlmOrchestrator, SharedTransport};
 pub use transport::{HttpTransport, ReplayTransport, Transport};
 
 /// What can go wrong talking to a model.

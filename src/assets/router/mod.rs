@@ -168,6 +168,17 @@ pub enum Role {
 }
 
 impl Role {
+    /// Where the part goes relative to the main object, as a preposition: `inside`, `on`,
+    /// `around` (`with` for the main object itself).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Role::Primary => "with",
+            Role::Inside => "inside",
+            Role::On => "on",
+            Role::Around => "around",
+        }
+    }
+
     fn from_word(word: &str, container: bool) -> Role {
         match word {
             "inside" | "filled with" | "full of" | "containing" | "holding" | "carrying" => {

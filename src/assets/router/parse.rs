@@ -32,10 +32,20 @@ pub struct Compound {
 #[derive(Deserialize)]
 struct CompoundTable {
     compounds: BTreeMap<String, Compound>,
+    not_their_head: NotTheirHead,
     group_words: BTreeMap<String, serde_json::Value>,
 }
 
-type Tables = (BTreeMap<String, Compound>, BTreeMap<String, Vec<String>>);
+#[derive(Deserialize, Default)]
+struct NotTheirHead {
+    nouns: Vec<String>,
+}
+
+type Tables = (
+    BTreeMap<String, Compound>,
+    BTreeMap<String, Vec<String>>,
+    Vec<String>,
+);
 
 fn table() -> &'static Tables {
     static T: OnceLock<Tables> = OnceLock::new();
@@ -51,7 +61,7 @@ fn table() -> &'static Tables {
                             .map(|v| (k, v))
                     })
                     .collect();
-                (t.compounds, groups)
+                (t.compounds, groups, t.not_their_head.nouns)
             })
             .unwrap_or_default()
     })
@@ -60,6 +70,11 @@ fn table() -> &'static Tables {
 /// Every compound noun and its definition.
 pub fn compounds() -> &'static BTreeMap<String, Compound> {
     &table().0
+}
+
+/// Compound nouns that are not a kind of their last word ("knife block").
+pub fn not_their_head() -> &'static [String] {
+    &table().2
 }
 
 /// Group words ("fruits", "toys") and the categories they stand for.
@@ -210,27 +225,48 @@ fn count_in(words: &[String]) -> Option<u32> {
 /// equal length; returns (start, len, noun).
 fn find_noun(words: &[String]) -> Option<(usize, usize, String)> {
     let sing: Vec<String> = words.iter().map(|w| singular(w)).collect();
+    // The head noun is the last content word: a match must end there ("dish rack" is no dish,
+    // "test tube rack" no tube), and a compound that is not a kind of its head ("knife block")
+    // matches nothing.
+    let head = words.iter().rposition(|w| is_content_word(w))?;
+    for len in (2..=4usize).rev() {
+        if len <= head + 1 {
+            let start = head + 1 - len;
+            let compound = [&words[start..head], std::slice::from_ref(&sing[head])]
+                .concat()
+                .join(" ");
+            if not_their_head().contains(&compound) {
+                return None;
+            }
+        }
+    }
     for len in (1..=4usize).rev() {
-        if len > words.len() {
+        if len > head + 1 {
             continue;
         }
-        for start in (0..=words.len() - len).rev() {
-            let mut phrase: Vec<&str> = words[start..start + len - 1]
-                .iter()
-                .map(String::as_str)
-                .collect();
-            phrase.push(&sing[start + len - 1]);
-            let phrase = phrase.join(" ");
-            // Also try the phrase as written (aliases such as "glasses" or "cacti").
-            let literal = words[start..start + len].join(" ");
-            for p in [phrase, literal] {
-                if !candidate_categories(&p).is_empty() {
-                    return Some((start, len, p));
-                }
+        let start = head + 1 - len;
+        let mut phrase: Vec<&str> = words[start..head].iter().map(String::as_str).collect();
+        phrase.push(&sing[head]);
+        let phrase = phrase.join(" ");
+        // Also try the phrase as written (aliases such as "glasses" or "cacti").
+        let literal = words[start..=head].join(" ");
+        for p in [phrase, literal] {
+            if !candidate_categories(&p).is_empty() {
+                return Some((start, len, p));
             }
         }
     }
     None
+}
+
+/// A word that can end a noun phrase: not a stop word or a number, and not an attribute word
+/// unless it also names an object ("glass").
+fn is_content_word(w: &str) -> bool {
+    !STOP.contains(&w)
+        && number_word(w).is_none()
+        && (!attributes::is_attribute_word(w)
+            || !candidate_categories(&singular(w)).is_empty()
+            || !candidate_categories(w).is_empty())
 }
 
 /// Parses one noun phrase.
@@ -284,6 +320,19 @@ pub fn phrase(text: &str) -> Phrase {
     }
     p.attributes = attributes::parse(&rest.join(" "));
     p
+}
+
+/// Every category the main object of `description` can be built as, first the one built when
+/// the stage does not choose: a compound's container ("fruit bowl": `serving_bowl`), else the
+/// head noun's candidates ("clock": wall and table clocks). Empty for unknown nouns.
+pub fn main_categories(description: &str) -> Vec<&'static str> {
+    let parsed = parse(description);
+    if let Some((_, comp)) = &parsed.compound
+        && let Some(c) = crate::assets::procedural::resolve_category(&comp.container)
+    {
+        return vec![c];
+    }
+    parsed.main.categories
 }
 
 /// Splits a request into the main phrase and its parts, and finds compound nouns.

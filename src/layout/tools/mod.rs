@@ -2,7 +2,8 @@
 //! `generate_room_specs`, `resize_room`, `add_adjacency`, `remove_adjacency`,
 //! `add_open_connection`, `remove_open_connection`, `set_wall_height`, `add_door`,
 //! `remove_door`, `add_window`, `remove_window`, `get_material`, `set_room_materials`,
-//! `validate`, `render_ascii`, `observe_scene`. Sizes in metres; rooms by id. Room and
+//! `validate`, `render_ascii`, `observe_scene` (and `render_plan_image` for models with image
+//! input). Sizes in metres; rooms by id. Room and
 //! material edits are in `rooms`, doors and windows in `openings`, observations in `observe`.
 
 use schemars::JsonSchema;
@@ -123,6 +124,7 @@ pub fn toolbox() -> Toolbox<LayoutState> {
     );
     t.add("validate", "Check the layout: every room reachable from the exterior door, en-suites only through their bedroom, no room only through a bathroom, required neighbours, overlaps, doors and windows that fit.", Access::Verify, observe::validate);
     t.add("render_ascii", "The floor plan as text: walls, doors (D, E outside), windows (W), open connections (.), room ids and sizes, and every wall segment with its openings.", Access::Observe, observe::render_ascii);
+    t.add("render_plan_image", "A top-down picture of the floor plan (PNG): room names, sizes and materials, walls, doors with their swing, windows.", Access::Observe, observe::render_plan_image);
     t.add("observe_scene", "Every room with position, size, role, neighbours, doors, windows, materials and its prompt; requested rooms vs present; search statistics; validation errors.", Access::Observe, observe::observe_scene);
     t
 }
@@ -156,10 +158,12 @@ mod tests {
             "validate",
             "render_ascii",
             "observe_scene",
+            // The plan as a picture, for models with image input.
+            "render_plan_image",
         ] {
             assert!(t.spec(name).is_some(), "missing {name}");
         }
-        assert_eq!(t.len(), 16);
+        assert_eq!(t.len(), 17);
         // The critic may look and verify, never edit.
         let critic: Vec<&str> = t
             .specs_for(AgentRole::Critic)
@@ -250,6 +254,14 @@ mod tests {
         assert_eq!(e.kind, crate::agents::ToolErrorKind::BadArguments);
         let text = t.call(&mut s, d, "render_ascii", json!({})).unwrap();
         assert!(text["text"].as_str().unwrap().contains("living_room_0"));
+        // The picture is a PNG (base64 of the signature starts "iVBOR").
+        let image = t.call(&mut s, d, "render_plan_image", json!({})).unwrap();
+        assert!(
+            image["image_png_base64"]
+                .as_str()
+                .unwrap()
+                .starts_with("iVBORw0KGgo")
+        );
         t.call(&mut s, d, "set_wall_height", json!({"height_m": 3.0}))
             .unwrap();
         assert!(

@@ -4,6 +4,7 @@ use schemars::JsonSchema;
 use serde::Serialize;
 
 use super::{NoArgs, fail};
+use crate::agents::ImageObservation;
 use crate::agents::ToolError;
 use crate::layout::ascii;
 use crate::layout::search::SearchStats;
@@ -28,6 +29,23 @@ pub(super) fn render_ascii(s: &mut LayoutState, _: NoArgs) -> Result<AsciiPlan, 
     Ok(AsciiPlan {
         text: ascii::render(&rooms),
     })
+}
+
+pub(super) fn render_plan_image(
+    s: &mut LayoutState,
+    _: NoArgs,
+) -> Result<ImageObservation, ToolError> {
+    let (rooms, _) = s.rooms();
+    let png = crate::layout::stage::plan_png(&s.prompt, s.seed, &rooms)
+        .map_err(|e| fail(e.to_string()))?;
+    Ok(ImageObservation::new(
+        format!(
+            "top-down plan of {} rooms: names, sizes and materials, walls, doors with their \
+             swing, windows (blue), scale bar in metres",
+            rooms.len()
+        ),
+        &png,
+    ))
 }
 
 /// One room as the agents see it.

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 
 use super::{
     Arrangement, Builder, MAX_COUNT, RoomPlan, SurfaceItem, SurfaceWant, Want, clutter_factor,
-    covers, fill_factor, is_seat, is_table_like, pick, place_to_arrangement,
+    covers, fill_factor, is_seat, is_table_like, one_per_parent, pick, place_to_arrangement,
 };
 use crate::knowledge::{KbItem, Place};
 use crate::prompt::{Density, Mention, Support};
@@ -338,9 +338,12 @@ impl Builder<'_> {
                 continue;
             }
             // The most typical object takes half (a bookshelf is mostly books); the rest
-            // cycle through the list in order.
+            // cycle through the list in order. Appliances, electronics and lamps come one per
+            // parent (a kitchen counter has one coffee machine, not half a dozen), so they never
+            // take the half and the cycle skips them once every parent has one.
+            let single = |noun: &str| one_per_parent(self.lex, noun);
             let mut counts: Vec<(String, u32)> = Vec::new();
-            let first = if items.len() > 1 && total >= 4 {
+            let first = if items.len() > 1 && total >= 4 && !single(items[0]) {
                 total.div_ceil(2)
             } else {
                 0
@@ -353,11 +356,29 @@ impl Builder<'_> {
             } else {
                 items.clone()
             };
-            for k in 0..(total - first) as usize {
-                let noun = rest[k % rest.len()].clone();
-                match counts.iter_mut().find(|(n, _)| *n == noun) {
-                    Some((_, c)) => *c += 1,
-                    None => counts.push((noun, 1)),
+            let mut left = total - first;
+            while left > 0 {
+                let mut added = false;
+                for noun in &rest {
+                    if left == 0 {
+                        break;
+                    }
+                    let have = counts
+                        .iter()
+                        .find(|(n, _)| n == *noun)
+                        .map_or(0, |(_, c)| *c);
+                    if single(noun) && have >= n_parents {
+                        continue;
+                    }
+                    match counts.iter_mut().find(|(n, _)| n == *noun) {
+                        Some((_, c)) => *c += 1,
+                        None => counts.push(((*noun).clone(), 1)),
+                    }
+                    left -= 1;
+                    added = true;
+                }
+                if !added {
+                    break;
                 }
             }
             for (noun, c) in counts {

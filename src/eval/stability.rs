@@ -1,0 +1,221 @@
+//! STB, MD, XD, MR: how far the free objects move when the scene is simulated.
+//!
+//! The scene is split into *islands*: free objects that rest on each other (the support
+//! relation) or whose collision bounds come within [`ISLAND_GAP_M`] of each other, each with the
+//! architecture and the welded objects near it. Objects of different islands cannot touch
+//! without first moving more than the STB threshold, so simulating the islands one by one
+//! gives the verdicts of one big simulation; the islands run in parallel on the bridge pool,
+//! and each stops at rest on its own, so a piece that keeps rocking in one corner does not keep
+//! the whole scene simulating (Drake's cost per step grows faster than the body count).
+
+use std::collections::BTreeMap;
+
+use super::{EvalError, Stability, StabilityOptions, Unstable};
+use crate::physics::as_written::posed_objects;
+use crate::physics::collision::PosedObject;
+use crate::physics::pool::Job;
+use crate::physics::settle::{SettleOptions, SettleResult, parse_result, request_args};
+use crate::physics::workspace::{Role, Workspace};
+use crate::physics::{BridgePool, PhysicsError};
+use crate::scene::{ObjectKind, SceneObject, Support};
+use crate::stages::SceneState;
+
+/// Free objects closer than this (collision bounds) share an island, metres.
+pub const ISLAND_GAP_M: f64 = 0.02;
+
+/// Welded objects within this distance of an island's bounds are simulated with it, metres.
+const WELDED_REACH_M: f64 = 0.05;
+
+fn is_free(o: &SceneObject) -> bool {
+    !o.welded && matches!(o.kind, ObjectKind::Furniture | ObjectKind::Manipuland)
+}
+
+fn near(a: &([f64; 3], [f64; 3]), b: &([f64; 3], [f64; 3]), gap: f64) -> bool {
+    (0..3).all(|k| a.0[k] - gap <= b.1[k] && b.0[k] - gap <= a.1[k])
+}
+
+/// Union-find root with path halving.
+fn root(parent: &mut [usize], mut i: usize) -> usize {
+    while parent[i] != i {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    i
+}
+
+/// The islands of free objects (ids in scene order), largest first.
+pub fn islands(state: &SceneState) -> Vec<Vec<String>> {
+    let posed: Vec<PosedObject> = posed_objects(&state.scene, &state.assets);
+    let bounds: BTreeMap<&str, ([f64; 3], [f64; 3])> =
+        posed.iter().map(|p| (p.id.as_str(), p.bounds)).collect();
+    let free: Vec<&SceneObject> = state.scene.objects.iter().filter(|o| is_free(o)).collect();
+    let index: BTreeMap<&str, usize> = free
+        .iter()
+        .enumerate()
+        .map(|(i, o)| (o.id.as_str(), i))
+        .collect();
+    let mut parent: Vec<usize> = (0..free.len()).collect();
+    let join = |parent: &mut Vec<usize>, a: usize, b: usize| {
+        let (ra, rb) = (root(parent, a), root(parent, b));
+        if ra != rb {
+            parent[ra.max(rb)] = ra.min(rb);
+        }
+    };
+    for (i, o) in free.iter().enumerate() {
+        if let Support::Object { parent: p, .. } = &o.support
+            && let Some(&j) = index.get(p.as_str())
+        {
+            join(&mut parent, i, j);
+        }
+    }
+    for i in 0..free.len() {
+        for j in i + 1..free.len() {
+            let (Some(a), Some(b)) = (
+                bounds.get(free[i].id.as_str()),
+                bounds.get(free[j].id.as_str()),
+            ) else {
+                continue;
+            };
+            if near(a, b, ISLAND_GAP_M) {
+                join(&mut parent, i, j);
+            }
+        }
+    }
+    let mut groups: BTreeMap<usize, Vec<String>> = BTreeMap::new();
+    for (i, o) in free.iter().enumerate() {
+        let r = root(&mut parent, i);
+        groups.entry(r).or_default().push(o.id.clone());
+    }
+    let mut out: Vec<Vec<String>> = groups.into_values().collect();
+    // Largest first: the pool starts the longest simulations first.
+    out.sort_by_key(|g| std::cmp::Reverse(g.len()));
+    out
+}
+
+/// The subset scene of one island: its objects free, the architecture and the welded objects
+/// near it welded.
+fn island_members(state: &SceneState, island: &[String]) -> BTreeMap<String, Role> {
+    let posed = posed_objects(&state.scene, &state.assets);
+    let bounds: BTreeMap<&str, ([f64; 3], [f64; 3])> =
+        posed.iter().map(|p| (p.id.as_str(), p.bounds)).collect();
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for id in island {
+        if let Some(b) = bounds.get(id.as_str()) {
+            for k in 0..3 {
+                lo[k] = lo[k].min(b.0[k]);
+                hi[k] = hi[k].max(b.1[k]);
+            }
+        }
+    }
+    let mut members: BTreeMap<String, Role> = BTreeMap::new();
+    for o in &state.scene.objects {
+        let welded_near = o.kind != ObjectKind::Architecture
+            && !is_free(o)
+            && bounds
+                .get(o.id.as_str())
+                .is_some_and(|b| near(b, &(lo, hi), WELDED_REACH_M));
+        if o.kind == ObjectKind::Architecture || welded_near {
+            members.insert(o.id.clone(), Role::Welded);
+        }
+    }
+    for id in island {
+        members.insert(id.clone(), Role::Free);
+    }
+    members
+}
+
+/// Runs the stability simulation of `state`, island by island on the pool.
+pub fn stability(
+    state: &SceneState,
+    pool: &BridgePool,
+    opts: &StabilityOptions,
+) -> Result<Stability, EvalError> {
+    let settle = SettleOptions {
+        max_time: opts.duration_s,
+        time_step: opts.time_step_s,
+        stop_at_rest: opts.stop_at_rest,
+        rest_speed: opts.rest_speed,
+        rest_angular_speed: opts.rest_angular_speed,
+        rest_time: opts.rest_time,
+        contact: opts.contact,
+        wall_limit: 3600.0,
+        ..SettleOptions::default()
+    };
+    let islands = islands(state);
+    let mut results: Vec<SettleResult> = Vec::new();
+    if !islands.is_empty() {
+        let mut workspace = Workspace::new(state)?;
+        let mut jobs = Vec::new();
+        let mut op = String::new();
+        for island in &islands {
+            let directives = workspace.write_subset(state, &island_members(state, island))?;
+            let (o, args) = request_args(&directives, &workspace.package_xml(), &settle);
+            op = o.clone();
+            jobs.push(Job::new(&o, args));
+        }
+        for (island, r) in islands.iter().zip(pool.run_all(jobs)) {
+            let r = parse_result(&op, r.map_err(PhysicsError::from)?)?;
+            tracing::info!(
+                "STB island of {} ({} free): {:.2} s simulated{} in {:.1} s wall ({:.1} ms/step, plant {:.1} s)",
+                island[0],
+                island.len(),
+                r.sim_time,
+                if r.at_rest { ", at rest" } else { "" },
+                r.wall_s,
+                r.ms_per_step,
+                r.build_s
+            );
+            results.push(r);
+        }
+    }
+    Ok(verdicts(opts, islands.len(), &results))
+}
+
+/// STB and the motion statistics from the islands' results.
+fn verdicts(opts: &StabilityOptions, islands: usize, results: &[SettleResult]) -> Stability {
+    let mut unstable = Vec::new();
+    let (mut n, mut sum_d, mut sum_r, mut max_d) = (0usize, 0.0, 0.0, 0.0f64);
+    for result in results {
+        // After an island stopped early at rest, the most the remaining time could add.
+        let left = (opts.duration_s - result.sim_time).max(0.0);
+        let (extra_d, extra_r) = if result.at_rest {
+            (left * opts.rest_speed, left * opts.rest_angular_speed)
+        } else {
+            (0.0, 0.0)
+        };
+        for (id, m) in &result.motion {
+            n += 1;
+            sum_d += m.displacement_m;
+            sum_r += m.rotation_rad;
+            max_d = max_d.max(m.displacement_m);
+            let (d, r) = (m.displacement_m + extra_d, m.rotation_rad + extra_r);
+            if !(d < opts.max_displacement_m && r < opts.max_rotation_rad) {
+                unstable.push(Unstable {
+                    id: id.clone(),
+                    displacement_m: d,
+                    rotation_rad: r,
+                });
+            }
+        }
+    }
+    unstable.sort_by(|a, b| a.id.cmp(&b.id));
+    let mean = |s: f64| if n == 0 { 0.0 } else { s / n as f64 };
+    Stability {
+        options: *opts,
+        free_objects: n,
+        stable: n - unstable.len(),
+        percent: if n == 0 {
+            100.0
+        } else {
+            100.0 * (n - unstable.len()) as f64 / n as f64
+        },
+        md_mm: 1e3 * mean(sum_d),
+        xd_m: max_d,
+        mr_rad: mean(sum_r),
+        at_rest_at_end: results.iter().all(|r| r.at_rest),
+        simulated_s: results.iter().map(|r| r.sim_time).fold(0.0, f64::max),
+        islands,
+        unstable,
+    }
+}
