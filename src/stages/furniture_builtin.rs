@@ -198,9 +198,7 @@ impl BuiltinFurnitureDesigner {
             let Some(obj) = state.scene.scene.object(&id).cloned() else {
                 continue;
             };
-            let is_explicit = explicit
-                .iter()
-                .any(|n| StageState::names(n, &obj.category));
+            let is_explicit = explicit.iter().any(|n| StageState::names(n, &obj.category));
             let _ = cx.call(state, Role::Designer, "remove_object", json!({"id": id}));
             if is_explicit {
                 // Re-place a requested piece somewhere else; drop a default one.

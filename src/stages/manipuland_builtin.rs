@@ -45,6 +45,25 @@ fn surface_tiers(state: &StageState, entity: &str) -> [Vec<String>; 2] {
     [tier(false), tier(true)]
 }
 
+/// Whether an object stands like a slab (a book: thin, tall) and so may also be laid flat;
+/// a microwave or a pan on its side is no arrangement anyone makes.
+fn may_lie_flat(noun: &str) -> bool {
+    StageState::category_of(noun)
+        .and_then(crate::assets::procedural::prior)
+        .is_some_and(|p| p.typical[0].min(p.typical[1]) < 0.5 * p.typical[2])
+}
+
+/// The `lay_flat` values to try, in order.
+fn lay_flat_options(noun: &str, lay_flat_first: bool) -> Vec<bool> {
+    if !may_lie_flat(noun) {
+        vec![false]
+    } else if lay_flat_first {
+        vec![true, false]
+    } else {
+        vec![false, true]
+    }
+}
+
 impl BuiltinManipulandDesigner {
     fn fill_want(
         state: &mut StageState,
@@ -117,7 +136,7 @@ impl BuiltinManipulandDesigner {
                         still.push(key);
                         continue;
                     }
-                    let placed = [lay_flat_first, !lay_flat_first].into_iter().any(|flat| {
+                    let placed = lay_flat_options(&want.noun, lay_flat_first).into_iter().any(|flat| {
                         cx.call(
                             state,
                             Role::Designer,

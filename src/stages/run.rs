@@ -286,8 +286,7 @@ fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String,
         let mut hosts: Vec<&(String, String)> = furniture
             .iter()
             .filter(|(_, cat)| {
-                group.parent == "any"
-                    || super::StageState::names(&group.parent, cat)
+                group.parent == "any" || super::StageState::names(&group.parent, cat)
             })
             .collect();
         if hosts.is_empty() {
