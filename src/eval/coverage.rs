@@ -8,6 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::prompt::{Count, Reading};
 use crate::scene::{ObjectKind, Scene};
+use crate::stages::StageState;
 
 /// One requirement of the prompt and how the scene meets it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -41,14 +42,16 @@ pub struct Coverage {
 /// Compares `reading` with the objects of `scene`. Several mentions of one category merge
 /// into the largest count; a category both asked for and negated counts as asked for.
 pub fn coverage(reading: &Reading, scene: &Scene) -> Coverage {
-    let mut present: BTreeMap<&str, u32> = BTreeMap::new();
-    for o in scene
-        .objects
-        .iter()
-        .filter(|o| o.kind != ObjectKind::Architecture)
-    {
-        *present.entry(o.category.as_str()).or_insert(0) += 1;
-    }
+    // The reader's nouns ("board game", "sink") name the library's categories ("board_game",
+    // "sink_vanity") through the asset router's reading, as when the scene was built.
+    let present_of = |noun: &str| {
+        scene
+            .objects
+            .iter()
+            .filter(|o| o.kind != ObjectKind::Architecture)
+            .filter(|o| StageState::names(noun, &o.category))
+            .count() as u32
+    };
     // Within a room, repeated mentions of a category ("a table ... the table") merge into the
     // largest count; across rooms of a house they add up. Per-parent and per-setting counts
     // ("two chairs at each desk", "set for 4") are totals.
@@ -78,7 +81,7 @@ pub fn coverage(reading: &Reading, scene: &Scene) -> Coverage {
     }
     let mut requirements = Vec::new();
     for (cat, count) in &asked {
-        let have = present.get(cat.as_str()).copied().unwrap_or(0);
+        let have = present_of(cat.as_str());
         let (kind, required, satisfied) = match count {
             Count::Exactly(n) => ("exactly", *n, have == *n),
             Count::AtLeast(n) => ("at_least", *n, have >= *n),
@@ -95,7 +98,7 @@ pub fn coverage(reading: &Reading, scene: &Scene) -> Coverage {
     negated.sort();
     negated.dedup();
     for cat in negated.into_iter().filter(|c| !asked.contains_key(c)) {
-        let have = present.get(cat.as_str()).copied().unwrap_or(0);
+        let have = present_of(cat.as_str());
         requirements.push(Requirement {
             category: cat,
             kind: "none".into(),

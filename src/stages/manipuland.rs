@@ -451,16 +451,26 @@ fn place_layers(
     let mut ids = Vec::new();
     let mut layer_z = 0.0;
     let height = rec.bounds[1][2] - rec.bounds[0][2];
+    // In a container's cavity things pack tight (quarter turns with a little play) and the
+    // top layer may heap up to half its height above the rim; on an open surface a pile turns
+    // every piece its own way.
+    let cavity = s.surface.id.starts_with("inside");
+    let heap = if cavity { height / 2.0 } else { 0.0 };
     while (ids.len() as u32) < count {
         let mut extra: Vec<Slot> = Vec::new();
         let mut placed_in_layer = 0;
         while (ids.len() as u32) < count {
-            let yaw = 37.0 * ids.len() as f64;
+            let k = ids.len() as f64;
+            let yaw = if cavity {
+                90.0 * (k % 2.0) + 4.0 * (k % 3.0)
+            } else {
+                37.0 * k
+            };
             let rot = item_rotation(yaw, false);
             let layer = SurfaceRef {
                 parent: s.parent.clone(),
                 surface: SurfaceRecord {
-                    clearance: s.surface.clearance - layer_z,
+                    clearance: s.surface.clearance + heap - layer_z,
                     ..s.surface.clone()
                 },
             };
@@ -481,7 +491,7 @@ fn place_layers(
             break;
         }
         layer_z += height + 0.002;
-        if layer_z + height > s.surface.clearance {
+        if layer_z + height > s.surface.clearance + heap {
             break;
         }
     }
@@ -579,8 +589,6 @@ fn place_inside(state: &mut StageState, a: FillArgs) -> Result<PlaceResult, Tool
             a.container
         )));
     }
-    let routed = state.route_asset(&a.description, None)?;
-    let mut ids = Vec::new();
     // Cavities first (surface ids starting with "inside"), then shelves, then the rest.
     let mut surfaces = rec.surfaces.clone();
     surfaces.sort_by_key(|s| {
@@ -590,17 +598,42 @@ fn place_inside(state: &mut StageState, a: FillArgs) -> Result<PlaceResult, Tool
             s.id.clone(),
         )
     });
-    for surface in surfaces {
-        if ids.len() as u32 >= a.count {
-            break;
+    let fill = |state: &mut StageState,
+                size: Option<[f64; 3]>|
+     -> Result<(RoutedAsset, Vec<String>), ToolError> {
+        let routed = state.route_asset(&a.description, size)?;
+        let mut ids = Vec::new();
+        for surface in &surfaces {
+            if ids.len() as u32 >= a.count {
+                break;
+            }
+            let s = SurfaceRef {
+                parent: container.clone(),
+                surface: surface.clone(),
+            };
+            let more = place_layers(state, &s, &routed, a.count - ids.len() as u32)?;
+            ids.extend(more);
         }
-        let s = SurfaceRef {
-            parent: container.clone(),
-            surface,
-        };
-        let more = place_layers(state, &s, &routed, a.count - ids.len() as u32)?;
-        ids.extend(more);
+        Ok((routed, ids))
+    };
+    // At their typical size first; when fewer fit than asked for ("a bin with at least five
+    // stuffed animals"), the smallest plausible size of the same object, if that holds more.
+    let mut trial = state.clone();
+    let (mut routed, mut ids) = fill(&mut trial, None)?;
+    let smallest = StageState::category_of(&a.description)
+        .and_then(crate::assets::procedural::prior)
+        .map(|p| p.min);
+    if (ids.len() as u32) < a.count
+        && let Some(min) = smallest
+    {
+        let mut small = state.clone();
+        if let Ok((r, more)) = fill(&mut small, Some(min))
+            && more.len() > ids.len()
+        {
+            (trial, routed, ids) = (small, r, more);
+        }
     }
+    *state = trial;
     if ids.is_empty() {
         return Err(ToolError::failed(format!(
             "nothing fits inside {}",

@@ -333,7 +333,11 @@ impl Builder<'_> {
             }
             let per_parent = ((pick(rule.count, t) as f64) * cf).round() as u32;
             let total = per_parent.saturating_mul(n_parents).min(MAX_COUNT);
-            let items: Vec<&String> = rule.items.iter().filter(|i| !self.excluded(i)).collect();
+            let items: Vec<&String> = rule
+                .items
+                .iter()
+                .filter(|i| !self.excluded(i) && !self.fixed_by_prompt(i))
+                .collect();
             if items.is_empty() || total == 0 {
                 continue;
             }

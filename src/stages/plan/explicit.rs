@@ -22,6 +22,16 @@ impl Builder<'_> {
             .any(|x| covers(self.lex, noun, x) || x == noun)
     }
 
+    /// Asked for with an exact number: defaults add no more of it (a table "set for 4 with a
+    /// plate each" has four plates, not four plus a china cabinet full).
+    pub(super) fn fixed_by_prompt(&self, noun: &str) -> bool {
+        self.reading.mentions.iter().any(|m| {
+            !m.negated
+                && matches!(m.count, Count::Exactly(_))
+                && (m.category == noun || covers(self.lex, noun, &m.category))
+        })
+    }
+
     /// Count of mention `i` in this plan: a plain count, or a per-parent count resolved
     /// against the parent's planned count; "several" from the knowledge base.
     pub(super) fn count(&self, i: usize, depth: usize) -> (u32, bool) {
