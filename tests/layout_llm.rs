@@ -103,5 +103,7 @@ fn an_llm_designer_edits_the_layout_through_the_tools() {
         .map(|t| t["function"]["name"].as_str().unwrap())
         .collect();
     assert!(names.contains(&"generate_room_specs") && names.contains(&"add_open_connection"));
-    assert_eq!(names.len(), 16);
+    // The 16 tools the design names plus the plan as a picture.
+    assert!(names.contains(&"render_plan_image"));
+    assert_eq!(names.len(), 17);
 }
