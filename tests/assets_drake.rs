@@ -1,7 +1,7 @@
 //! Every category of the asset library in real Drake, through the bridge, batched so the whole
 //! library costs three requests: every model loads (bodies, mass, joints and collision pieces
-//! as written); every furniture piece dropped alone on a floor for 2 s (2 ms steps) stays
-//! upright; every
+//! as written); every furniture piece and small object dropped alone on a floor for 2 s
+//! (2 ms steps) stays upright; every
 //! articulated model, welded in place with its self-collision turned on, opens each joint to
 //! its limit under a constant force without exceeding it and without its links penetrating.
 
@@ -74,13 +74,14 @@ fn every_category_loads_stands_and_opens_in_drake() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     eprintln!("load: {:.1} s", t0.elapsed().as_secs_f64());
 
-    // 2. Furniture dropped alone on a floor stays upright (rugs and mats are thin coverings,
-    // welded in scenes, so they are not dropped).
+    // 2. Furniture and small objects dropped alone on a floor stay upright (rugs and mats are
+    // thin coverings, welded in scenes, so they are not dropped).
     let floor: Vec<&(String, Asset)> = assets
         .iter()
         .filter(|(c, _)| {
             let p = procedural::prior(c).unwrap();
-            p.support == SupportClass::Floor && p.kind != Kind::ThinCovering
+            matches!(p.support, SupportClass::Floor | SupportClass::Surface)
+                && p.kind != Kind::ThinCovering
         })
         .collect();
     let models: Vec<Value> = floor
@@ -93,12 +94,22 @@ fn every_category_loads_stands_and_opens_in_drake() {
             json!({"models": models, "duration": 2.0, "time_step": 2e-3}),
         )
         .unwrap();
+    // Furniture stays exactly upright; a small object may roll or rock a little on a rigid
+    // floor under point contact (round fruit, a pen on its side) but never topples or wanders.
     let fallen: Vec<String> = floor
         .iter()
         .filter_map(|(c, _)| {
             let m = &dropped["models"][c];
+            let small = procedural::prior(c).unwrap().support == SupportClass::Surface;
             let rot = m["rotation_rad"].as_f64().unwrap_or(f64::NAN);
-            (rot.is_nan() || rot >= 0.1 || m["vertical_m"].as_f64().unwrap_or(-1.0) < -0.05)
+            let tilt = m["tilt_rad"].as_f64().unwrap_or(f64::NAN);
+            let shifted = m["horizontal_m"].as_f64().unwrap_or(f64::NAN);
+            let upright = if small {
+                tilt < 0.5 && shifted < 0.03
+            } else {
+                rot < 0.1
+            };
+            (!upright || m["vertical_m"].as_f64().unwrap_or(-1.0) < -0.05)
                 .then(|| format!("{c}: {m}"))
         })
         .collect();
@@ -108,7 +119,7 @@ fn every_category_loads_stands_and_opens_in_drake() {
         "did not stay upright:\n{}",
         fallen.join("\n")
     );
-    assert!(floor.len() >= 50);
+    assert!(floor.len() >= 150);
 
     // 3. Articulated models open every joint to its limit, never past it, never into themselves.
     let articulated: Vec<&(String, Asset)> = assets

@@ -127,3 +127,62 @@ fn render_of_a_missing_directory_is_a_clear_error() {
         "a failed render must not create the directory"
     );
 }
+
+#[test]
+fn asset_writes_a_preview_and_gallery_writes_contact_sheets() {
+    let root = tempfile::tempdir().unwrap();
+    let asset = root.path().join("chair");
+    let a = scenesmith(
+        &["asset", "a red armchair", "--out", asset.to_str().unwrap()],
+        &[("SCENESMITH_ASSET_CACHE", "off")],
+    );
+    assert!(a.status.success(), "{}", text(&a));
+    assert_eq!(png_size(&asset.join("preview.png")), (480, 360));
+
+    let gallery = root.path().join("gallery");
+    let g = scenesmith(
+        &[
+            "gallery",
+            "--out",
+            gallery.to_str().unwrap(),
+            "--only",
+            "lamp",
+            "--json",
+        ],
+        &[],
+    );
+    assert!(g.status.success(), "{}", text(&g));
+    let report: serde_json::Value = serde_json::from_slice(&g.stdout).unwrap();
+    let entries = report["entries"].as_array().unwrap();
+    // Floor lamps stand on the floor, table and desk lamps on surfaces, sconces on walls.
+    let sheets = pngs(&gallery);
+    assert!(
+        sheets.contains(&"gallery_floor.png".to_string()),
+        "{sheets:?}"
+    );
+    assert!(
+        sheets.contains(&"gallery_surface.png".to_string()),
+        "{sheets:?}"
+    );
+    assert!(entries.iter().any(|e| e["category"] == "floor_lamp"));
+    assert!(
+        entries
+            .iter()
+            .all(|e| e["category"].as_str().unwrap().contains("lamp"))
+    );
+    for s in &sheets {
+        let (w, h) = png_size(&gallery.join(s));
+        assert!(w >= 240 && h >= 180, "{s}: {w}x{h}");
+    }
+    let none = scenesmith(
+        &[
+            "gallery",
+            "--out",
+            gallery.to_str().unwrap(),
+            "--only",
+            "zeppelin",
+        ],
+        &[],
+    );
+    assert_eq!(none.status.code(), Some(2), "{}", text(&none));
+}

@@ -53,8 +53,9 @@ impl AssetCache {
     pub fn on_disk(dir: &Path) -> AssetCache {
         AssetCache {
             dir: Some(dir.join(format!(
-                "v{CACHE_FORMAT}_{}",
-                super::procedural::GENERATOR_VERSION
+                "v{CACHE_FORMAT}_{}_{}",
+                super::procedural::GENERATOR_VERSION,
+                super::procedural::generator_fingerprint()
             ))),
             ..AssetCache::default()
         }

@@ -419,38 +419,61 @@ fn place_in_center(state: &mut StageState, a: CenterArgs) -> Result<PlaceResult,
 /// Seat poses around a table-like parent of footprint `parent_size`, in the parent's frame:
 /// `count` seats spread evenly over the two long sides (facing each other), the ends used only
 /// when the long sides are full. Fewer poses than `count` when the table is too small.
+/// Seat poses around a parent of footprint `parent_size` (its frame: +Y is the front), facing
+/// it: first the arrangement for `count` seats (the front side first, so a desk against a wall
+/// gets its chair in front; then the back; then the ends), then every other slot as a fallback
+/// for seats that do not fit where the arrangement puts them.
 fn seats(parent_size: [f64; 2], chair: [f64; 2], count: usize) -> Vec<Pose> {
     let (tw, td) = (parent_size[0], parent_size[1]);
     let (cw, cd) = (chair[0], chair[1]);
     let max_per_side = ((tw / (cw + 0.12)).floor() as usize).max(1);
-    let on_long = count.min(2 * max_per_side);
-    let sides = [on_long.div_ceil(2), on_long / 2];
-    let mut out = Vec::new();
-    for (k, n) in sides.iter().enumerate() {
+    let side = |k: usize, n: usize| -> Vec<Pose> {
         let (y, yaw) = if k == 0 {
-            (-(td / 2.0 + cd / 2.0 + SEAT_GAP), 0.0)
-        } else {
             (td / 2.0 + cd / 2.0 + SEAT_GAP, std::f64::consts::PI)
+        } else {
+            (-(td / 2.0 + cd / 2.0 + SEAT_GAP), 0.0)
         };
-        for i in 0..*n {
-            let x = -tw / 2.0 + tw * (i as f64 + 0.5) / *n as f64;
-            out.push(Pose::from_xyz_yaw(x, y, 0.0, yaw));
-        }
-    }
-    if count > on_long && td >= cw + 0.05 {
-        out.push(Pose::from_xyz_yaw(
+        (0..n)
+            .map(|i| {
+                let x = -tw / 2.0 + tw * (i as f64 + 0.5) / n as f64;
+                Pose::from_xyz_yaw(x, y, 0.0, yaw)
+            })
+            .collect()
+    };
+    let ends = [
+        Pose::from_xyz_yaw(
             -(tw / 2.0 + cd / 2.0 + SEAT_GAP),
             0.0,
             0.0,
             -std::f64::consts::FRAC_PI_2,
-        ));
-        if count > on_long + 1 {
-            out.push(Pose::from_xyz_yaw(
-                tw / 2.0 + cd / 2.0 + SEAT_GAP,
-                0.0,
-                0.0,
-                std::f64::consts::FRAC_PI_2,
-            ));
+        ),
+        Pose::from_xyz_yaw(
+            tw / 2.0 + cd / 2.0 + SEAT_GAP,
+            0.0,
+            0.0,
+            std::f64::consts::FRAC_PI_2,
+        ),
+    ];
+    let on_long = count.min(2 * max_per_side);
+    let mut out = side(0, on_long.div_ceil(2));
+    out.extend(side(1, on_long / 2));
+    let end_fits = td >= cw + 0.05;
+    if end_fits {
+        out.extend(ends.iter().take(count.saturating_sub(on_long)).copied());
+    }
+    // Fallbacks: every slot of both sides, then the ends.
+    let mut more = side(0, max_per_side);
+    more.extend(side(1, max_per_side));
+    if end_fits {
+        more.extend(ends);
+    }
+    for p in more {
+        let t = p.translation();
+        if !out
+            .iter()
+            .any(|q| (q.translation() - t).norm() < 0.5 * cw.min(cd))
+        {
+            out.push(p);
         }
     }
     out

@@ -235,11 +235,12 @@ fn fit(
             slot
         }
         None => {
-            // Raster from the back-left corner, rows along u.
+            // Raster from the back-left corner (the parent's -Y side: a desk's monitor and a
+            // counter's appliances stand at the back), rows along u.
             let step = 0.01;
             let mut found = None;
-            let mut v = sv - hv;
-            'scan: while v >= -sv + hv - 1e-9 {
+            let mut v = -sv + hv;
+            'scan: while v <= sv - hv + 1e-9 {
                 let mut u = -su + hu;
                 while u <= su - hu + 1e-9 {
                     let slot = make(u, v);
@@ -249,7 +250,7 @@ fn fit(
                     }
                     u += step;
                 }
-                v -= step;
+                v += step;
             }
             found.ok_or_else(|| format!("no free spot left on {}", s.key()))?
         }

@@ -26,8 +26,16 @@ fn fruit(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let (rx, ry, rz) = (w / 2.0, d / 2.0, h / 2.0);
     match ctx.variant {
         "pear" => {
+            // The lower lobe sits on a small flat base, so a pear stands.
             let low = h * 0.62;
-            b.add_ellipsoid([0.0, 0.0, low / 2.0], [rx, ry, low / 2.0], c)?;
+            b.add_frustum(
+                [0.0, 0.0, 0.0],
+                [0.0, 0.0, low * 0.3],
+                rx * 0.55,
+                rx * 0.93,
+                c,
+            )?;
+            b.add_ellipsoid([0.0, 0.0, low * 0.08 + low * 0.46], [rx, ry, low * 0.46], c)?;
             let top_r = rx * 0.6;
             b.add_ellipsoid(
                 [0.0, 0.0, low * 0.8 + (h - low * 0.8 - 0.012) / 2.0],
@@ -118,16 +126,21 @@ fn fruit(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     single(b.finish()?, vec![])
 }
 
-/// Banana: a curved chain of tapering segments along x, ends up.
+/// Banana: a curved chain of tapering segments along x, lying on its side (the curve in the
+/// horizontal plane, ends towards +y), as a banana rests on a table.
 fn banana(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
     let mut b = body(ctx);
-    let r = d / 2.0;
+    let r = h / 2.0;
     let n = 6;
     let pts: Vec<[f64; 3]> = (0..=n)
         .map(|i| {
             let t = i as f64 / n as f64 * 2.0 - 1.0;
-            [t * (w / 2.0 - r * 0.45), 0.0, r + (h - 1.45 * r) * t * t]
+            [
+                t * (w / 2.0 - r * 0.45),
+                -d / 2.0 + r + (d - 1.45 * r) * t * t,
+                r,
+            ]
         })
         .collect();
     for i in 0..n {

@@ -51,6 +51,64 @@ pub use generic::build_generic;
 /// Bumped whenever any generator's output changes, so cached assets are rebuilt.
 pub const GENERATOR_VERSION: u32 = 2;
 
+/// A fingerprint of everything that shapes a built asset: the generators, the geometry and
+/// physics code and the data tables, hashed from their sources compiled into the binary. The
+/// disk cache keys on it, so an asset built by an older binary is never served after a
+/// change, without anyone remembering to bump [`GENERATOR_VERSION`].
+pub fn generator_fingerprint() -> &'static str {
+    static FINGERPRINT: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+    FINGERPRINT.get_or_init(|| {
+        let sources: &[&[u8]] = &[
+            include_bytes!("bathroom.rs").as_slice(),
+            include_bytes!("beds.rs").as_slice(),
+            include_bytes!("decor.rs").as_slice(),
+            include_bytes!("electronics.rs").as_slice(),
+            include_bytes!("equipment.rs").as_slice(),
+            include_bytes!("food.rs").as_slice(),
+            include_bytes!("generic.rs").as_slice(),
+            include_bytes!("kitchen.rs").as_slice(),
+            include_bytes!("kitchenware.rs").as_slice(),
+            include_bytes!("lighting.rs").as_slice(),
+            include_bytes!("misc.rs").as_slice(),
+            include_bytes!("mod.rs").as_slice(),
+            include_bytes!("parts.rs").as_slice(),
+            include_bytes!("seating.rs").as_slice(),
+            include_bytes!("shapes.rs").as_slice(),
+            include_bytes!("shelving.rs").as_slice(),
+            include_bytes!("storage.rs").as_slice(),
+            include_bytes!("tables.rs").as_slice(),
+            include_bytes!("toys.rs").as_slice(),
+            include_bytes!("wall.rs").as_slice(),
+            include_bytes!("../articulated/library.rs").as_slice(),
+            include_bytes!("../articulated/mod.rs").as_slice(),
+            include_bytes!("../articulated/parts.rs").as_slice(),
+            include_bytes!("../articulated/reader.rs").as_slice(),
+            include_bytes!("../textures/art.rs").as_slice(),
+            include_bytes!("../textures/mod.rs").as_slice(),
+            include_bytes!("../../geometry/convex.rs").as_slice(),
+            include_bytes!("../../geometry/mass.rs").as_slice(),
+            include_bytes!("../../geometry/mesh.rs").as_slice(),
+            include_bytes!("../../geometry/mod.rs").as_slice(),
+            include_bytes!("../../geometry/polygon.rs").as_slice(),
+            include_bytes!("../builder.rs").as_slice(),
+            include_bytes!("../physical.rs").as_slice(),
+            include_bytes!("../material.rs").as_slice(),
+            include_bytes!("../attributes.rs").as_slice(),
+            include_bytes!("../thin.rs").as_slice(),
+            include_bytes!("../mod.rs").as_slice(),
+            include_bytes!("../../data/asset_priors.json").as_slice(),
+            include_bytes!("../../data/asset_attributes.json").as_slice(),
+            include_bytes!("../../data/materials.json").as_slice(),
+        ];
+        let mut h = blake3::Hasher::new();
+        for s in sources {
+            h.update(&(s.len() as u64).to_le_bytes());
+            h.update(s);
+        }
+        h.finalize().to_hex()[..12].to_string()
+    })
+}
+
 /// Where an asset of a category is normally supported.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
