@@ -453,10 +453,24 @@ fn place_layers(
     let mut layer_z = 0.0;
     let height = rec.bounds[1][2] - rec.bounds[0][2];
     // In a container's cavity things pack tight (quarter turns with a little play) and the
-    // top layer may heap up to half its height above the rim; on an open surface a pile turns
-    // every piece its own way.
+    // top layer may heap above the rim; on an open surface a pile turns every piece its own
+    // way.
     let cavity = s.surface.id.starts_with("inside");
-    let heap = if cavity { height / 2.0 } else { 0.0 };
+    let heap = if cavity { height } else { 0.0 };
+    // A bowl widens upwards: above the bottom layer, things rest on the sloping wall and on
+    // each other over the square inscribed in the opening, not only over the flat bottom.
+    let opening = state
+        .scene
+        .scene
+        .assets
+        .get(&s.parent.asset)
+        .map(|r| {
+            [
+                (0.7 * (r.bounds[1][0] - r.bounds[0][0])).max(s.surface.size[0]),
+                (0.7 * (r.bounds[1][1] - r.bounds[0][1])).max(s.surface.size[1]),
+            ]
+        })
+        .unwrap_or(s.surface.size);
     while (ids.len() as u32) < count {
         let mut extra: Vec<Slot> = Vec::new();
         let mut placed_in_layer = 0;
@@ -472,6 +486,11 @@ fn place_layers(
                 parent: s.parent.clone(),
                 surface: SurfaceRecord {
                     clearance: s.surface.clearance + heap - layer_z,
+                    size: if cavity && layer_z > 0.0 {
+                        opening
+                    } else {
+                        s.surface.size
+                    },
                     ..s.surface.clone()
                 },
             };
@@ -488,11 +507,19 @@ fn place_layers(
             extra.push(slot);
             placed_in_layer += 1;
         }
-        if placed_in_layer == 0 {
+        // A cavity whose bottom is already taken still has room above it.
+        if placed_in_layer == 0 && !(cavity && layer_z == 0.0) {
             break;
         }
         layer_z += height + 0.002;
-        if layer_z + height > s.surface.clearance + heap {
+        // In a cavity a layer may start anywhere below the rim (a heaped fruit bowl); on an
+        // open surface every layer stays under the free height.
+        let full = if cavity {
+            layer_z >= s.surface.clearance
+        } else {
+            layer_z + height > s.surface.clearance
+        };
+        if full {
             break;
         }
     }

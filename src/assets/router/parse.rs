@@ -324,13 +324,23 @@ pub fn phrase(text: &str) -> Phrase {
 
 /// Every category the main object of `description` can be built as, first the one built when
 /// the stage does not choose: a compound's container ("fruit bowl": `serving_bowl`), else the
-/// head noun's candidates ("clock": wall and table clocks). Empty for unknown nouns.
+/// head noun's candidates ("clock": wall and table clocks), else a group word's members
+/// ("fruit": apple, orange, ...). Empty for unknown nouns.
 pub fn main_categories(description: &str) -> Vec<&'static str> {
     let parsed = parse(description);
     if let Some((_, comp)) = &parsed.compound
         && let Some(c) = crate::assets::procedural::resolve_category(&comp.container)
     {
         return vec![c];
+    }
+    if parsed.main.categories.is_empty() {
+        // A group word ("fruit", "toys"): its members, the first built by default.
+        return parsed
+            .main
+            .group
+            .iter()
+            .filter_map(|g| crate::assets::procedural::resolve_category(g))
+            .collect();
     }
     parsed.main.categories
 }

@@ -10,6 +10,17 @@ use super::{
 use crate::knowledge::Place;
 use crate::prompt::{self, Count, GroupKind, Mention, Per, RelationKind, Support, Target};
 
+/// The furniture that carries a small object the prompt puts somewhere on the floor.
+const STAND: &str = "side table";
+
+/// True when the asset library builds `noun` as an object that rests on furniture (a printer,
+/// a vase), whatever the prompt's wording made of it.
+fn is_small_object(noun: &str) -> bool {
+    crate::stages::StageState::category_of(noun)
+        .and_then(crate::assets::procedural::prior)
+        .is_some_and(|p| p.support == crate::assets::procedural::SupportClass::Surface)
+}
+
 impl Builder<'_> {
     pub(super) fn mentions(&self) -> impl Iterator<Item = (usize, &Mention)> {
         self.reading.room_mentions(self.room)
@@ -294,6 +305,29 @@ impl Builder<'_> {
                 height_m: None,
                 parent_instance: None,
             };
+            if support == Support::Floor && is_small_object(&m.category) {
+                // A small object the prompt stands somewhere in the room ("a printer sits in
+                // the corner"): a side table there carries it.
+                let arrangement = self
+                    .relation_arrangement(m, count)
+                    .unwrap_or(Arrangement::AgainstWall);
+                self.plan.furniture.push(Want {
+                    noun: STAND.into(),
+                    description: STAND.into(),
+                    count,
+                    explicit: false,
+                    at_least: false,
+                    arrangement,
+                    height_m: None,
+                    parent_instance: None,
+                });
+                self.surface.push(SurfaceItem {
+                    parent: STAND.into(),
+                    want,
+                    place_settings: false,
+                });
+                continue;
+            }
             match support {
                 Support::Floor => {
                     want.arrangement = self
