@@ -13,14 +13,6 @@ use crate::prompt::{self, Count, GroupKind, Mention, Per, RelationKind, Support,
 /// The furniture that carries a small object the prompt puts somewhere on the floor.
 const STAND: &str = "side table";
 
-/// True when the asset library builds `noun` as an object that rests on furniture (a printer,
-/// a vase), whatever the prompt's wording made of it.
-fn is_small_object(noun: &str) -> bool {
-    crate::stages::StageState::category_of(noun)
-        .and_then(crate::assets::procedural::prior)
-        .is_some_and(|p| p.support == crate::assets::procedural::SupportClass::Surface)
-}
-
 impl Builder<'_> {
     pub(super) fn mentions(&self) -> impl Iterator<Item = (usize, &Mention)> {
         self.reading.room_mentions(self.room)
@@ -305,9 +297,11 @@ impl Builder<'_> {
                 height_m: None,
                 parent_instance: None,
             };
-            if support == Support::Floor && is_small_object(&m.category) {
-                // A small object the prompt stands somewhere in the room ("a printer sits in
-                // the corner"): a side table there carries it.
+            if support == Support::Floor
+                && self.lex.lookup(&m.category).map(|e| e.support) == Some(Support::Surface)
+            {
+                // An object that rests on furniture, which the prompt stands somewhere in the
+                // room ("a printer sits in the corner"): a side table there carries it.
                 let arrangement = self
                     .relation_arrangement(m, count)
                     .unwrap_or(Arrangement::AgainstWall);
