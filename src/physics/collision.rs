@@ -21,8 +21,9 @@ pub struct PosedPiece {
     pub vertices: Vec<Vector3<f64>>,
     /// Distinct face normal directions, world frame (unit).
     pub normals: Vec<Vector3<f64>>,
-    /// Distinct edge directions, world frame (unit).
-    pub edges: Vec<Vector3<f64>>,
+    /// Edges between faces that are not coplanar: the two face normals (unit, world frame),
+    /// which give the edge's arc on the Gauss map.
+    pub edges: Vec<(Vector3<f64>, Vector3<f64>)>,
     /// World bounds.
     pub lo: Vector3<f64>,
     /// World bounds.
@@ -51,13 +52,28 @@ impl PosedPiece {
             })
             .collect();
         let mut normals = Vec::new();
-        let mut edges = Vec::new();
+        // Only true edges (between faces that are not coplanar) give separating axes; the
+        // diagonals that triangulate a flat face do not, and they would square the work.
+        let mut faces_of_edge: BTreeMap<(u32, u32), Vec<Vector3<f64>>> = BTreeMap::new();
         for t in &piece.triangles {
             let [a, b, c] = t.map(|i| vertices[i as usize]);
-            push_direction(&mut normals, (b - a).cross(&(c - a)));
-            push_direction(&mut edges, b - a);
-            push_direction(&mut edges, c - b);
-            push_direction(&mut edges, a - c);
+            let n = (b - a).cross(&(c - a));
+            push_direction(&mut normals, n);
+            for (p, q) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+                faces_of_edge
+                    .entry((p.min(q), p.max(q)))
+                    .or_default()
+                    .push(n);
+            }
+        }
+        let mut edges = Vec::new();
+        for faces in faces_of_edge.values() {
+            let [Some(n0), Some(n1)] = [0, 1].map(|k| faces.get(k)?.try_normalize(1e-15)) else {
+                continue;
+            };
+            if faces.len() == 2 && n0.cross(&n1).norm() > 1e-9 {
+                edges.push((n0, n1));
+            }
         }
         let mut lo = Vector3::repeat(f64::INFINITY);
         let mut hi = Vector3::repeat(f64::NEG_INFINITY);
@@ -89,14 +105,29 @@ impl PosedPiece {
 /// Penetration depth (m) and direction (unit, pushing `b` out of `a`) of two posed convex
 /// pieces, or `None` when they are separated or just touching.
 pub fn sat_penetration(a: &PosedPiece, b: &PosedPiece) -> Option<(f64, Vector3<f64>)> {
-    if (0..3).any(|k| a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) {
+    sat_penetration_shifted(a, &Vector3::zeros(), b, &Vector3::zeros())
+}
+
+/// [`sat_penetration`] of the pieces translated by `offset_a` and `offset_b` (the projection
+/// loop moves pieces without re-posing them).
+pub fn sat_penetration_shifted(
+    a: &PosedPiece,
+    offset_a: &Vector3<f64>,
+    b: &PosedPiece,
+    offset_b: &Vector3<f64>,
+) -> Option<(f64, Vector3<f64>)> {
+    let (alo, ahi) = (a.lo + offset_a, a.hi + offset_a);
+    let (blo, bhi) = (b.lo + offset_b, b.hi + offset_b);
+    if (0..3).any(|k| ahi[k] < blo[k] || bhi[k] < alo[k]) {
         return None;
     }
     let mut best = f64::INFINITY;
     let mut best_axis = Vector3::z();
     let mut test = |axis: Vector3<f64>| -> bool {
+        let (sa, sb) = (offset_a.dot(&axis), offset_b.dot(&axis));
         let (a0, a1) = a.project(&axis);
         let (b0, b1) = b.project(&axis);
+        let (a0, a1, b0, b1) = (a0 + sa, a1 + sa, b0 + sb, b1 + sb);
         let push_pos = a1 - b0; // move b along +axis by this much
         let push_neg = b1 - a0; // move b along -axis by this much
         let overlap = push_pos.min(push_neg);
@@ -114,9 +145,19 @@ pub fn sat_penetration(a: &PosedPiece, b: &PosedPiece) -> Option<(f64, Vector3<f
             return None;
         }
     }
-    for ea in &a.edges {
-        for eb in &b.edges {
-            if let Some(axis) = ea.cross(eb).try_normalize(1e-9)
+    // Edge pairs: only those whose arcs cross on the Gauss map (a face of the Minkowski
+    // difference) can separate the pieces; the rest are never the minimum.
+    for (na0, na1) in &a.edges {
+        let ea = na1.cross(na0);
+        for (nb0, nb1) in &b.edges {
+            let (c, d) = (-nb0, -nb1);
+            let dc = d.cross(&c);
+            let (cba, dba) = (c.dot(&ea), d.dot(&ea));
+            let (adc, bdc) = (na0.dot(&dc), na1.dot(&dc));
+            if !(cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0) {
+                continue;
+            }
+            if let Some(axis) = ea.cross(&dc).try_normalize(1e-9)
                 && !test(axis)
             {
                 return None;
@@ -281,6 +322,60 @@ mod tests {
         );
         let rotated = Pose::from_xyz_yaw(0.0, 0.0, 1.6, 0.7);
         assert!(penetration(&cube(), &Pose::IDENTITY, &cube(), &rotated).is_none());
+    }
+
+    /// The separating-axis minimum over every face normal and every edge pair (no Gauss-map
+    /// pruning), for comparison.
+    fn brute_force_depth(a: &PosedPiece, b: &PosedPiece) -> Option<f64> {
+        let mut axes: Vec<Vector3<f64>> = a.normals.iter().chain(&b.normals).copied().collect();
+        for (a0, a1) in &a.edges {
+            for (b0, b1) in &b.edges {
+                if let Some(axis) = a1.cross(a0).cross(&b1.cross(b0)).try_normalize(1e-9) {
+                    axes.push(axis);
+                }
+            }
+        }
+        let mut best = f64::INFINITY;
+        for axis in axes {
+            let (a0, a1) = a.project(&axis);
+            let (b0, b1) = b.project(&axis);
+            let overlap = (a1 - b0).min(b1 - a0);
+            if overlap <= 0.0 {
+                return None;
+            }
+            best = best.min(overlap);
+        }
+        Some(best)
+    }
+
+    proptest::proptest! {
+        /// Gauss-map pruning of edge pairs never changes the depth: boxes and cylinders in
+        /// random orientations give the brute-force minimum.
+        #[test]
+        fn pruned_sat_equals_brute_force(
+            rpy_a in proptest::array::uniform3(-3.2f64..3.2),
+            rpy_b in proptest::array::uniform3(-3.2f64..3.2),
+            offset in proptest::array::uniform3(-0.6f64..0.6),
+            shapes in (0usize..3, 0usize..3),
+        ) {
+            let shape = |k: usize| match k {
+                0 => ConvexPiece::cuboid([0.0; 3], [0.8, 0.5, 0.3]).unwrap(),
+                1 => ConvexPiece::cylinder(0.0, 0.0, 0.3, -0.25, 0.25, 12).unwrap(),
+                _ => ConvexPiece::from_points(&[
+                    [0.0, 0.0, 0.0], [0.6, 0.1, 0.0], [0.2, 0.5, 0.1], [0.1, 0.2, 0.5],
+                    [0.4, 0.4, 0.4],
+                ]).unwrap(),
+            };
+            let a = PosedPiece::new(&shape(shapes.0), &Pose::from_xyz_rpy([0.0; 3], rpy_a));
+            let b = PosedPiece::new(&shape(shapes.1), &Pose::from_xyz_rpy(offset, rpy_b));
+            let pruned = sat_penetration(&a, &b).map(|(d, _)| d);
+            let brute = brute_force_depth(&a, &b);
+            match (pruned, brute) {
+                (Some(p), Some(q)) => proptest::prop_assert!((p - q).abs() < 1e-9, "{p} vs {q}"),
+                (None, None) => {}
+                (p, q) => proptest::prop_assert!(false, "pruned {p:?}, brute force {q:?}"),
+            }
+        }
     }
 
     /// Regression: parry3d's EPA returned no contact at dz = 0.05 and depths of 0.017 and

@@ -32,11 +32,12 @@ use clarabel::solver::{
 use nalgebra::{Point3, Vector3};
 use parry3d_f64::math::{Pose as PPose, Vector as PVec};
 use parry3d_f64::shape::ConvexPolyhedron;
+use rayon::prelude::*;
 use serde::Serialize;
 
 use super::PhysicsError;
 use super::as_written::posed_objects;
-use super::collision::{PosedPiece, sat_penetration};
+use super::collision::{PosedPiece, sat_penetration_shifted};
 use crate::geometry::polygon;
 use crate::scene::Pose;
 use crate::stages::SceneState;
@@ -229,17 +230,6 @@ fn bounds_of(points: &[Vector3<f64>]) -> (Vector3<f64>, Vector3<f64>) {
     (lo, hi)
 }
 
-/// `piece` moved by `offset`.
-fn shifted(piece: &PosedPiece, offset: &Vector3<f64>) -> PosedPiece {
-    let mut p = piece.clone();
-    for v in &mut p.vertices {
-        *v += offset;
-    }
-    p.lo += offset;
-    p.hi += offset;
-    p
-}
-
 fn overlap(
     alo: &Vector3<f64>,
     ahi: &Vector3<f64>,
@@ -338,8 +328,6 @@ fn measure(
     opts: &ProjectionOptions,
     margin: f64,
 ) -> Measured {
-    let mut rows = Vec::new();
-    let mut deepest = BTreeMap::new();
     let mut below_floor = BTreeMap::new();
     if let Some(fz) = opts.floor_z {
         for (i, b) in bodies.iter().enumerate().filter(|(_, b)| b.movable) {
@@ -349,119 +337,32 @@ fn measure(
             }
         }
     }
-    for i in 0..bodies.len() {
-        for j in i + 1..bodies.len() {
+    // Candidate pairs by their bounds, then the pieces of each pair in parallel; the rows are
+    // merged in pair order, so the result does not depend on the thread count.
+    let pairs: Vec<(usize, usize)> = (0..bodies.len())
+        .flat_map(|i| (i + 1..bodies.len()).map(move |j| (i, j)))
+        .filter(|&(i, j)| {
             let (a, b) = (&bodies[i], &bodies[j]);
-            if !a.movable && !b.movable {
-                continue;
-            }
-            let (oa, ob) = (offsets[i], offsets[j]);
-            if !overlap(
-                &(a.lo0 + oa),
-                &(a.hi0 + oa),
-                &(b.lo0 + ob),
-                &(b.hi0 + ob),
-                margin,
-            ) {
-                continue;
-            }
-            let first_row = rows.len();
-            let mut slide_out = false;
-            for pa in a.pieces.iter().filter(|p| !p.is_floor) {
-                for pb in b.pieces.iter().filter(|p| !p.is_floor) {
-                    if !overlap(
-                        &(pa.lo0 + oa),
-                        &(pa.hi0 + oa),
-                        &(pb.lo0 + ob),
-                        &(pb.hi0 + ob),
-                        margin,
-                    ) {
-                        continue;
-                    }
-                    // Overlapping pieces: exact depth and direction by the separating-axis
-                    // test (parry's EPA is unreliable for deep overlaps); pieces apart: GJK.
-                    let overlap_dir = if overlap(
-                        &(pa.lo0 + oa),
-                        &(pa.hi0 + oa),
-                        &(pb.lo0 + ob),
-                        &(pb.hi0 + ob),
-                        0.0,
-                    ) {
-                        sat_penetration(&shifted(&pa.posed, &oa), &shifted(&pb.posed, &ob))
-                    } else {
-                        None
-                    };
-                    let (d, normal) = match overlap_dir {
-                        Some((depth, axis)) => (-depth, axis),
-                        None => {
-                            let pose_a = PPose::from_translation(PVec::new(oa.x, oa.y, oa.z));
-                            let pose_b = PPose::from_translation(PVec::new(ob.x, ob.y, ob.z));
-                            let Ok(Some(c)) = parry3d_f64::query::contact(
-                                &pose_a, &pa.shape, &pose_b, &pb.shape, margin,
-                            ) else {
-                                continue;
-                            };
-                            // Touching counts as apart here; the SAT saw no overlap.
-                            (c.dist.max(0.0), to_vec3(c.normal1))
-                        }
-                    };
-                    if d < 0.0 {
-                        let e = deepest.entry((i, j)).or_insert(0.0f64);
-                        *e = e.max(-d);
-                    }
-                    let n = normal;
-                    let d_row = d;
-                    let target = if d < -opts.tolerance {
-                        opts.clearance
-                    } else {
-                        d.min(opts.clearance)
-                    };
-                    let horizontal = (n.x * n.x + n.y * n.y).sqrt();
-                    if opts.xy_only && d < -opts.tolerance && horizontal < 0.5 {
-                        // Sliding along a vertical normal resolves nothing: the pair gets one
-                        // row for the whole bodies below.
-                        slide_out = true;
-                        continue;
-                    } else if n.norm() < 0.5 || !n.iter().all(|v| v.is_finite()) {
-                        continue;
-                    }
-                    if d_row >= target + margin {
-                        continue;
-                    }
-                    rows.push(Row {
-                        a: i,
-                        b: j,
-                        n,
-                        d: d_row,
-                        target,
-                    });
-                }
-            }
-            if slide_out {
-                // One body slides out of the other's footprint along the shortest horizontal
-                // exit. Piece rows would fence it in: a chair back through a table top cannot
-                // cross the apron sideways, so it leaves the table's whole footprint.
-                rows.truncate(first_row);
-                let band = |body: &Body, o: &Vector3<f64>, other: &Body, oo: &Vector3<f64>| {
-                    let (zlo, zhi) = (other.lo0.z + oo.z, other.hi0.z + oo.z);
-                    body.pieces
-                        .iter()
-                        .filter(|p| !p.is_floor && p.lo0.z + o.z < zhi && p.hi0.z + o.z > zlo)
-                        .flat_map(|p| p.verts0.iter().copied())
-                        .collect::<Vec<_>>()
-                };
-                if let Some((n, depth)) =
-                    xy_separation(&band(a, &oa, b, &ob), &oa, &band(b, &ob, a, &oa), &ob)
-                {
-                    rows.push(Row {
-                        a: i,
-                        b: j,
-                        n,
-                        d: -depth,
-                        target: opts.clearance,
-                    });
-                }
-            }
+            (a.movable || b.movable)
+                && overlap(
+                    &(a.lo0 + offsets[i]),
+                    &(a.hi0 + offsets[i]),
+                    &(b.lo0 + offsets[j]),
+                    &(b.hi0 + offsets[j]),
+                    margin,
+                )
+        })
+        .collect();
+    let measured: Vec<(Vec<Row>, Option<f64>)> = pairs
+        .par_iter()
+        .map(|&(i, j)| measure_pair(bodies, offsets, opts, margin, i, j))
+        .collect();
+    let mut rows = Vec::new();
+    let mut deepest = BTreeMap::new();
+    for (&(i, j), (pair_rows, depth)) in pairs.iter().zip(measured) {
+        rows.extend(pair_rows);
+        if let Some(d) = depth {
+            deepest.insert((i, j), d);
         }
     }
     Measured {
@@ -469,6 +370,123 @@ fn measure(
         deepest,
         below_floor,
     }
+}
+
+/// The rows of one body pair and its deepest penetration (`None` when nothing penetrates).
+fn measure_pair(
+    bodies: &[Body],
+    offsets: &[Vector3<f64>],
+    opts: &ProjectionOptions,
+    margin: f64,
+    i: usize,
+    j: usize,
+) -> (Vec<Row>, Option<f64>) {
+    let (a, b) = (&bodies[i], &bodies[j]);
+    let (oa, ob) = (offsets[i], offsets[j]);
+    let mut rows = Vec::new();
+    let mut deepest: Option<f64> = None;
+    let mut slide_out = false;
+    for pa in a.pieces.iter().filter(|p| !p.is_floor) {
+        for pb in b.pieces.iter().filter(|p| !p.is_floor) {
+            if !overlap(
+                &(pa.lo0 + oa),
+                &(pa.hi0 + oa),
+                &(pb.lo0 + ob),
+                &(pb.hi0 + ob),
+                margin,
+            ) {
+                continue;
+            }
+            // Overlapping pieces: exact depth and direction by the separating-axis
+            // test (parry's EPA is unreliable for deep overlaps), run only when GJK
+            // says the hulls intersect (the full SAT is the costly part); pieces
+            // apart: GJK distance.
+            let pose_a = PPose::from_translation(PVec::new(oa.x, oa.y, oa.z));
+            let pose_b = PPose::from_translation(PVec::new(ob.x, ob.y, ob.z));
+            let overlap_dir = if overlap(
+                &(pa.lo0 + oa),
+                &(pa.hi0 + oa),
+                &(pb.lo0 + ob),
+                &(pb.hi0 + ob),
+                0.0,
+            ) && parry3d_f64::query::intersection_test(
+                &pose_a, &pa.shape, &pose_b, &pb.shape,
+            )
+            .map_or(true, |i| i.intersecting)
+            {
+                sat_penetration_shifted(&pa.posed, &oa, &pb.posed, &ob)
+            } else {
+                None
+            };
+            let (d, normal) = match overlap_dir {
+                Some((depth, axis)) => (-depth, axis),
+                None => {
+                    let Ok(Some(c)) =
+                        parry3d_f64::query::contact(&pose_a, &pa.shape, &pose_b, &pb.shape, margin)
+                    else {
+                        continue;
+                    };
+                    // Touching counts as apart here; the SAT saw no overlap.
+                    (c.dist.max(0.0), to_vec3(c.normal1))
+                }
+            };
+            if d < 0.0 {
+                deepest = Some(deepest.unwrap_or(0.0f64).max(-d));
+            }
+            let n = normal;
+            let d_row = d;
+            let target = if d < -opts.tolerance {
+                opts.clearance
+            } else {
+                d.min(opts.clearance)
+            };
+            let horizontal = (n.x * n.x + n.y * n.y).sqrt();
+            if opts.xy_only && d < -opts.tolerance && horizontal < 0.5 {
+                // Sliding along a vertical normal resolves nothing: the pair gets one
+                // row for the whole bodies below.
+                slide_out = true;
+                continue;
+            } else if n.norm() < 0.5 || !n.iter().all(|v| v.is_finite()) {
+                continue;
+            }
+            if d_row >= target + margin {
+                continue;
+            }
+            rows.push(Row {
+                a: i,
+                b: j,
+                n,
+                d: d_row,
+                target,
+            });
+        }
+    }
+    if slide_out {
+        // One body slides out of the other's footprint along the shortest horizontal
+        // exit. Piece rows would fence it in: a chair back through a table top cannot
+        // cross the apron sideways, so it leaves the table's whole footprint.
+        rows.clear();
+        let band = |body: &Body, o: &Vector3<f64>, other: &Body, oo: &Vector3<f64>| {
+            let (zlo, zhi) = (other.lo0.z + oo.z, other.hi0.z + oo.z);
+            body.pieces
+                .iter()
+                .filter(|p| !p.is_floor && p.lo0.z + o.z < zhi && p.hi0.z + o.z > zlo)
+                .flat_map(|p| p.verts0.iter().copied())
+                .collect::<Vec<_>>()
+        };
+        if let Some((n, depth)) =
+            xy_separation(&band(a, &oa, b, &ob), &oa, &band(b, &ob, a, &oa), &ob)
+        {
+            rows.push(Row {
+                a: i,
+                b: j,
+                n,
+                d: -depth,
+                target: opts.clearance,
+            });
+        }
+    }
+    (rows, deepest)
 }
 
 /// The horizontal direction `n` (unit, from `a` towards `b`) along which the vertical prisms over
