@@ -167,6 +167,90 @@ pub fn sat_penetration_shifted(
     Some((best, best_axis))
 }
 
+/// How two penetrating pieces come apart.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Exit {
+    /// Penetration depth (the minimum translation distance), metres.
+    pub depth: f64,
+    /// The minimum translation's direction (unit, moving `b`).
+    pub minimum_axis: Vector3<f64>,
+    /// How far `b` moves along `axis` to come free, metres (at least `depth`).
+    pub exit_depth: f64,
+    /// Unit direction `b` leaves along.
+    pub axis: Vector3<f64>,
+}
+
+/// A way out for two penetrating pieces (the projection's linearisation), or `None` when they
+/// are apart: among the face planes of the thinner piece that the other piece's centre lies
+/// beyond, the one needing the least motion; the minimum-translation axis of the
+/// separating-axis test when the centre lies beyond none (deep overlaps).
+///
+/// The minimum translation can point through the wrong side of a thin part: a book pushed
+/// through a bookcase's 8 mm back panel overlaps it least sideways, along the panel, into the
+/// side panel, and the two rows then fight. The book's centre lies in front of the panel, so
+/// the way out is forwards.
+pub fn exit_direction(
+    a: &PosedPiece,
+    offset_a: &Vector3<f64>,
+    b: &PosedPiece,
+    offset_b: &Vector3<f64>,
+) -> Option<Exit> {
+    let (depth, minimum_axis) = sat_penetration_shifted(a, offset_a, b, offset_b)?;
+    let centre = |p: &PosedPiece, o: &Vector3<f64>| (p.lo + p.hi) / 2.0 + o;
+    let (ca, cb) = (centre(a, offset_a), centre(b, offset_b));
+    let extent = |p: &PosedPiece, o: &Vector3<f64>, axis: &Vector3<f64>| {
+        let (lo, hi) = p.project(axis);
+        (lo + o.dot(axis), hi + o.dot(axis))
+    };
+    let mut best: Option<(f64, Vector3<f64>)> = None;
+    let mut consider = |depth: f64, push_b: Vector3<f64>| {
+        if depth > 0.0 && best.is_none_or(|(d, _)| depth < d) {
+            best = Some((depth, push_b));
+        }
+    };
+    // The thinner piece's faces decide: a thin panel's centre says nothing about where a book
+    // pushed through it should go, the book's centre does.
+    let thickness = |p: &PosedPiece| {
+        p.normals
+            .iter()
+            .map(|n| {
+                let (lo, hi) = p.project(n);
+                hi - lo
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    if thickness(a) <= thickness(b) {
+        for n in &a.normals {
+            for s in [*n, -n] {
+                let (_, a1) = extent(a, offset_a, &s);
+                let (b0, _) = extent(b, offset_b, &s);
+                // b's centre beyond a's face along s: b leaves along s.
+                if cb.dot(&s) > a1 {
+                    consider(a1 - b0, s);
+                }
+            }
+        }
+    } else {
+        for n in &b.normals {
+            for s in [*n, -n] {
+                // a's centre beyond b's face along s: b leaves along -s.
+                if ca.dot(&s) > extent(b, offset_b, &s).1 {
+                    let (_, a1) = extent(a, offset_a, &(-s));
+                    let (b0, _) = extent(b, offset_b, &(-s));
+                    consider(a1 - b0, -s);
+                }
+            }
+        }
+    }
+    let (exit_depth, axis) = best.unwrap_or((depth, minimum_axis));
+    Some(Exit {
+        depth,
+        minimum_axis,
+        exit_depth,
+        axis,
+    })
+}
+
 /// Penetration depth of two convex pieces at the given poses (`None` when apart).
 pub fn penetration(
     a: &ConvexPiece,

@@ -37,7 +37,7 @@ use serde::Serialize;
 
 use super::PhysicsError;
 use super::as_written::posed_objects;
-use super::collision::{PosedPiece, sat_penetration_shifted};
+use super::collision::{PosedPiece, exit_direction};
 use crate::geometry::polygon;
 use crate::scene::Pose;
 use crate::stages::SceneState;
@@ -414,12 +414,12 @@ fn measure_pair(
             )
             .map_or(true, |i| i.intersecting)
             {
-                sat_penetration_shifted(&pa.posed, &oa, &pb.posed, &ob)
+                exit_direction(&pa.posed, &oa, &pb.posed, &ob)
             } else {
                 None
             };
-            let (d, normal) = match overlap_dir {
-                Some((depth, axis)) => (-depth, axis),
+            let (d, d_row, n, minimum_axis) = match overlap_dir {
+                Some(exit) => (-exit.depth, -exit.exit_depth, exit.axis, exit.minimum_axis),
                 None => {
                     let Ok(Some(c)) =
                         parry3d_f64::query::contact(&pose_a, &pa.shape, &pose_b, &pb.shape, margin)
@@ -427,20 +427,22 @@ fn measure_pair(
                         continue;
                     };
                     // Touching counts as apart here; the SAT saw no overlap.
-                    (c.dist.max(0.0), to_vec3(c.normal1))
+                    let d = c.dist.max(0.0);
+                    let n = to_vec3(c.normal1);
+                    (d, d, n, n)
                 }
             };
             if d < 0.0 {
                 deepest = Some(deepest.unwrap_or(0.0f64).max(-d));
             }
-            let n = normal;
-            let d_row = d;
             let target = if d < -opts.tolerance {
                 opts.clearance
             } else {
                 d.min(opts.clearance)
             };
-            let horizontal = (n.x * n.x + n.y * n.y).sqrt();
+            // Sliding cannot resolve what only a vertical move would (a chair back through a
+            // table top): judged on the minimum translation, not the exit chosen for it.
+            let horizontal = minimum_axis.xy().norm();
             if opts.xy_only && d < -opts.tolerance && horizontal < 0.5 {
                 // Sliding along a vertical normal resolves nothing: the pair gets one
                 // row for the whole bodies below.
