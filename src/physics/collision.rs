@@ -208,8 +208,9 @@ pub fn exit_direction(
             best = Some((depth, push_b));
         }
     };
-    // The thinner piece's faces decide: a thin panel's centre says nothing about where a book
-    // pushed through it should go, the book's centre does.
+    // The thinner piece's faces decide (both when they are about as thick): a thin panel's
+    // centre says nothing about where a book pushed through it should go, the book's centre
+    // does.
     let thickness = |p: &PosedPiece| {
         p.normals
             .iter()
@@ -219,7 +220,8 @@ pub fn exit_direction(
             })
             .fold(f64::INFINITY, f64::min)
     };
-    if thickness(a) <= thickness(b) {
+    let (ta, tb) = (thickness(a), thickness(b));
+    if ta <= tb * 1.5 {
         for n in &a.normals {
             for s in [*n, -n] {
                 let (_, a1) = extent(a, offset_a, &s);
@@ -230,7 +232,8 @@ pub fn exit_direction(
                 }
             }
         }
-    } else {
+    }
+    if tb <= ta * 1.5 {
         for n in &b.normals {
             for s in [*n, -n] {
                 // a's centre beyond b's face along s: b leaves along -s.
