@@ -49,6 +49,10 @@ pub struct DirCheckpoints {
     progress: Progress,
     /// Keys loaded so far in this run (a resumed run replays the finished prefix).
     resumed: usize,
+    /// Log events already saved (each stage file holds only the events its stage added).
+    logged: usize,
+    /// Room architecture written by this run (rooms change only in the layout stage).
+    architecture_written: std::collections::BTreeSet<String>,
 }
 
 impl DirCheckpoints {
@@ -83,6 +87,8 @@ impl DirCheckpoints {
             dir,
             progress,
             resumed: 0,
+            logged: 0,
+            architecture_written: Default::default(),
         }
     }
 
@@ -104,6 +110,7 @@ impl DirCheckpoints {
 #[derive(Serialize, Deserialize)]
 struct Saved {
     scene: Scene,
+    /// The log events this stage added (the log so far is every earlier stage's in order).
     log: RunLog,
 }
 
@@ -115,8 +122,16 @@ impl CheckpointStore for DirCheckpoints {
             self.progress.finished.truncate(self.resumed);
             return None;
         }
-        let text = std::fs::read_to_string(self.stage_file(self.resumed)).ok()?;
-        let saved: Saved = serde_json::from_str(&text).ok()?;
+        let read = |i: usize| -> Option<Saved> {
+            let text = std::fs::read_to_string(self.stage_file(i)).ok()?;
+            serde_json::from_str(&text).ok()
+        };
+        let saved = read(self.resumed)?;
+        let mut log = RunLog::default();
+        for i in 0..self.resumed {
+            log.events.extend(read(i)?.log.events);
+        }
+        log.events.extend(saved.log.events);
         let mut state = SceneState::new(saved.scene);
         for (id, record) in &state.scene.assets.clone() {
             let asset_dir = self.dir.join(record.sdf.strip_suffix("/model.sdf")?);
@@ -124,8 +139,9 @@ impl CheckpointStore for DirCheckpoints {
             state.assets.insert(id.clone(), asset);
         }
         self.resumed += 1;
+        self.logged = log.events.len();
         tracing::info!("resumed stage {key} from {}", self.dir.display());
-        Some((state, saved.log))
+        Some((state, log))
     }
 
     fn save(&mut self, key: &str, scene: &SceneState, log: &RunLog) {
@@ -134,9 +150,19 @@ impl CheckpointStore for DirCheckpoints {
                 let rel = asset.scene_dir();
                 let dir = self.dir.join(&rel);
                 // Procedural assets are content-addressed: written once. Room architecture is
-                // rewritten (a room's walls can change while its id stays).
-                if rel.starts_with("assets/") && dir.join("model.sdf").is_file() {
+                // written by the layout stage (a room's walls can change while its id stays
+                // there) and once more by a resumed run, never again after every stage.
+                let architecture = !rel.starts_with("assets/");
+                let written = if architecture {
+                    key != "layout" && self.architecture_written.contains(&asset.id)
+                } else {
+                    dir.join("model.sdf").is_file()
+                };
+                if written {
                     continue;
+                }
+                if architecture {
+                    self.architecture_written.insert(asset.id.clone());
                 }
                 for f in asset_files(asset) {
                     write_atomic(&dir.join(&f.name), &f.bytes).map_err(|e| e.to_string())?;
@@ -145,12 +171,15 @@ impl CheckpointStore for DirCheckpoints {
             let i = self.progress.finished.len();
             let saved = Saved {
                 scene: scene.scene.clone(),
-                log: log.clone(),
+                log: RunLog {
+                    events: log.events.get(self.logged..).unwrap_or_default().to_vec(),
+                },
             };
             let text = serde_json::to_string(&saved).map_err(|e| e.to_string())?;
             write_atomic(&self.stage_file(i), text.as_bytes()).map_err(|e| e.to_string())?;
             self.progress.finished.push(key.to_string());
             self.resumed = self.progress.finished.len();
+            self.logged = log.events.len();
             let p = serde_json::to_string_pretty(&self.progress).map_err(|e| e.to_string())?;
             write_atomic(&self.dir.join("progress.json"), p.as_bytes()).map_err(|e| e.to_string())
         })();
