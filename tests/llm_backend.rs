@@ -404,3 +404,66 @@ fn malformed_or_unreachable_endpoint_is_a_clear_error() {
     assert!(String::from_utf8_lossy(&g.stderr).contains("nonexistent.json"));
     assert!(!out.exists());
 }
+
+/// Loop detection: a designer repeating the same failing call is stopped after
+/// `loop_limit` (3) attempts; its next scripted reply is never requested in that turn.
+#[test]
+fn the_same_failing_call_repeated_ends_the_designer_turn() {
+    let mut script = Script::default();
+    let bad = || tool_calls(&[("teleport_object", "{\"id\": \"no_such_object\"}")]);
+    for _ in 0..3 {
+        script.push("furniture", "designer", bad());
+    }
+    script.push(
+        "furniture",
+        "designer",
+        tool_calls(&[("place_in_center", "{\"description\": \"table\"}")]),
+    );
+    let server = MockServer::start(script);
+    let (scene, _) = build_scene(
+        "A dining room with a table.",
+        1,
+        "llm_loop",
+        &backend(&server),
+    )
+    .unwrap();
+    let s = server.script.lock().unwrap();
+    let designer_requests: Vec<&serde_json::Value> = s
+        .received
+        .iter()
+        .filter(|r| common::mock_llm::stage_and_role(r) == ("furniture".into(), "designer".into()))
+        .collect();
+    // The first turn: three requests, each answered with the failing call; the third failure
+    // ends the turn without a fourth request in the same conversation.
+    let first_turn_len = designer_requests[0]["messages"].as_array().unwrap().len();
+    let same_turn = designer_requests
+        .iter()
+        .take_while(|r| {
+            r["messages"].as_array().unwrap()[..first_turn_len]
+                == designer_requests[0]["messages"].as_array().unwrap()[..]
+        })
+        .count();
+    assert_eq!(
+        same_turn,
+        3,
+        "{} designer requests",
+        designer_requests.len()
+    );
+    let errors = designer_requests[2]["messages"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|m| m["role"] == "tool" && m["content"].as_str().unwrap_or("").contains("error"))
+        .count();
+    assert_eq!(errors, 2, "the third request carries the first two errors");
+    // The scripted table placement was never reached in that turn: no table unless a later
+    // design turn asked for it.
+    let later_turns = designer_requests.len() - same_turn;
+    let tables = scene
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.category.contains("table"))
+        .count();
+    assert_eq!(tables > 0, later_turns > 0);
+}
