@@ -44,12 +44,23 @@ pub struct Coverage {
 pub fn coverage(reading: &Reading, scene: &Scene) -> Coverage {
     // The reader's nouns ("board game", "sink") name the library's categories ("board_game",
     // "sink_vanity") through the asset router's reading, as when the scene was built.
+    // What the router builds for a mention's description counts too: "wooden play blocks"
+    // are the library's wooden blocks, a variant of the toy block the noun names.
+    let mut built: BTreeMap<&str, Vec<&'static str>> = BTreeMap::new();
+    for m in &reading.mentions {
+        if let Some(c) = StageState::category_of(&m.description()) {
+            built.entry(m.category.as_str()).or_default().push(c);
+        }
+    }
     let present_of = |noun: &str| {
+        let described = built.get(noun).map(Vec::as_slice).unwrap_or_default();
         scene
             .objects
             .iter()
             .filter(|o| o.kind != ObjectKind::Architecture)
-            .filter(|o| StageState::names(noun, &o.category))
+            .filter(|o| {
+                StageState::names(noun, &o.category) || described.contains(&o.category.as_str())
+            })
             .count() as u32
     };
     // Within a room, repeated mentions of a category ("a table ... the table") merge into the

@@ -471,10 +471,25 @@ fn place_layers(
             ]
         })
         .unwrap_or(s.surface.size);
+    // On an open surface a pile is a heap, not a row over the whole surface: the bottom
+    // layer holds about two thirds of it, and each layer above rests over the footprint of
+    // the one below.
+    let bottom_cap = if cavity || count < 3 {
+        count
+    } else {
+        (2 * count).div_ceil(3)
+    };
+    let mut region: Option<SurfaceRecord> = if bottom_cap < count {
+        pile_patch(state, s, &rec, bottom_cap)
+    } else {
+        None
+    };
+    let mut bottom: Vec<Slot> = Vec::new();
     while (ids.len() as u32) < count {
         let mut extra: Vec<Slot> = Vec::new();
         let mut placed_in_layer = 0;
-        while (ids.len() as u32) < count {
+        let layer_cap = if layer_z == 0.0 { bottom_cap } else { count };
+        while (ids.len() as u32) < count && placed_in_layer < layer_cap {
             let k = ids.len() as f64;
             let yaw = if cavity {
                 90.0 * (k % 2.0) + 4.0 * (k % 3.0)
@@ -482,6 +497,7 @@ fn place_layers(
                 37.0 * k
             };
             let rot = item_rotation(yaw, false);
+            let base = region.clone().unwrap_or_else(|| s.surface.clone());
             let layer = SurfaceRef {
                 parent: s.parent.clone(),
                 surface: SurfaceRecord {
@@ -489,9 +505,9 @@ fn place_layers(
                     size: if cavity && layer_z > 0.0 {
                         opening
                     } else {
-                        s.surface.size
+                        base.size
                     },
-                    ..s.surface.clone()
+                    ..base
                 },
             };
             // Upper layers ignore the lower layer's footprints (they rest on it).
@@ -511,6 +527,12 @@ fn place_layers(
         if placed_in_layer == 0 && !(cavity && layer_z == 0.0) {
             break;
         }
+        if layer_z == 0.0 {
+            bottom = extra.clone();
+        }
+        if !cavity {
+            region = footprint_region(region.as_ref().unwrap_or(&s.surface), &extra);
+        }
         layer_z += height + 0.002;
         // In a cavity a layer may start anywhere below the rim (a heaped fruit bowl); on an
         // open surface every layer stays under the free height.
@@ -523,7 +545,58 @@ fn place_layers(
             break;
         }
     }
+    // What the upper layers could not hold spreads on the bottom layer.
+    while !cavity && (ids.len() as u32) < count {
+        let k = ids.len() as f64;
+        let rot = item_rotation(37.0 * k, false);
+        let Ok((pose, slot)) = fit(state, s, &rec, &rot, None, &bottom) else {
+            break;
+        };
+        ids.push(add_item(state, routed, pose, &s.parent.id, &s.surface.id));
+        bottom.push(slot);
+    }
     Ok(ids)
+}
+
+/// A free square patch of `s` for the bottom layer of a pile of `n` copies of `rec` (side:
+/// about sqrt(n) items turned any way), or None when no such patch is free.
+fn pile_patch(
+    state: &StageState,
+    s: &SurfaceRef,
+    rec: &AssetRecord,
+    n: u32,
+) -> Option<SurfaceRecord> {
+    let (wx, wy) = (
+        rec.bounds[1][0] - rec.bounds[0][0],
+        rec.bounds[1][1] - rec.bounds[0][1],
+    );
+    let item = wx.hypot(wy) + GAP;
+    let side = f64::from(n).sqrt().ceil() * item + GAP;
+    let mut patch = rec.clone();
+    patch.bounds[0][0] = -side / 2.0;
+    patch.bounds[1][0] = side / 2.0;
+    patch.bounds[0][1] = -side / 2.0;
+    patch.bounds[1][1] = side / 2.0;
+    let (_, slot) = fit(state, s, &patch, &UnitQuaternion::identity(), None, &[]).ok()?;
+    let mut out = s.surface.clone();
+    out.center[0] += slot.u;
+    out.center[1] += slot.v;
+    out.size = [side, side];
+    Some(out)
+}
+
+/// The part of `surface` under the footprints of `slots` (the next pile layer rests on
+/// them), or None when there are none.
+fn footprint_region(surface: &SurfaceRecord, slots: &[Slot]) -> Option<SurfaceRecord> {
+    let lo_u = slots.iter().map(|s| s.u - s.hu).reduce(f64::min)?;
+    let hi_u = slots.iter().map(|s| s.u + s.hu).reduce(f64::max)?;
+    let lo_v = slots.iter().map(|s| s.v - s.hv).reduce(f64::min)?;
+    let hi_v = slots.iter().map(|s| s.v + s.hv).reduce(f64::max)?;
+    let mut out = surface.clone();
+    out.center[0] += (lo_u + hi_u) / 2.0;
+    out.center[1] += (lo_v + hi_v) / 2.0;
+    out.size = [hi_u - lo_u, hi_v - lo_v];
+    Some(out)
 }
 
 /// Like [`fit`] but only against `extra` (items of the same layer), for upper pile layers.

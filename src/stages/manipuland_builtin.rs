@@ -14,15 +14,14 @@ use crate::scene::ObjectKind;
 #[derive(Debug, Default)]
 pub struct BuiltinManipulandDesigner;
 
-fn count_on(state: &StageState, entity: &str, noun: &str) -> u32 {
+/// How many of the plan item `want` rest (transitively) on `entity`.
+fn count_on(state: &StageState, entity: &str, want: &Want) -> u32 {
     items_on(state, entity)
         .iter()
         .filter(|id| {
-            state
-                .scene
-                .scene
-                .object(id)
-                .is_some_and(|o| StageState::names(noun, &o.category))
+            state.scene.scene.object(id).is_some_and(|o| {
+                StageState::names_described(&want.noun, &want.description, &o.category)
+            })
         })
         .count() as u32
 }
@@ -72,9 +71,7 @@ impl BuiltinManipulandDesigner {
         want: &Want,
         lay_flat_first: bool,
     ) {
-        let mut need = want
-            .count
-            .saturating_sub(count_on(state, entity, &want.noun));
+        let mut need = want.count.saturating_sub(count_on(state, entity, want));
         if need == 0 {
             return;
         }
@@ -166,7 +163,7 @@ impl BuiltinManipulandDesigner {
                 let present = group
                     .items
                     .iter()
-                    .map(|w| count_on(state, &entity, &w.noun))
+                    .map(|w| count_on(state, &entity, w))
                     .min()
                     .unwrap_or(0);
                 if seats > present {
@@ -266,7 +263,7 @@ impl Critic<StageState> for BuiltinManipulandCritic {
         let (mut wanted, mut got) = (0u32, 0u32);
         for group in &state.plan.surfaces {
             for w in &group.items {
-                let have = count_on(state, &entity, &w.noun);
+                let have = count_on(state, &entity, w);
                 wanted += w.count;
                 got += have.min(w.count);
                 if have < w.count {

@@ -275,12 +275,24 @@ impl StageState {
     /// True when an object of `category` is what `noun` asks for: a category the router can
     /// build for it (at any stage), or the generic stand-in named after an unknown noun.
     pub fn names(noun: &str, category: &str) -> bool {
+        let main = router::parse::main_categories(noun);
         category == noun
             || category == crate::scene::sanitize_name(noun)
-            || router::parse::main_categories(noun).contains(&category)
+            || main.contains(&category)
+            || procedural::prior(category).is_some_and(|p| {
+                main.iter()
+                    .any(|c| procedural::support_sibling(c, p.support) == Some(category))
+            })
             || router::parse::phrase(noun)
                 .unknown_noun
                 .is_some_and(|u| crate::scene::sanitize_name(&u) == category)
+    }
+
+    /// True when an object of `category` is what a plan item asks for: what `noun` names, or
+    /// what the router builds for its `description` ("wooden play blocks" are the library's
+    /// wooden blocks, a variant of the toy block the noun names).
+    pub fn names_described(noun: &str, description: &str, category: &str) -> bool {
+        Self::names(noun, category) || Self::category_of(description) == Some(category)
     }
 
     /// Builds (or reuses) the asset for `description` through the asset router (attributes
@@ -292,7 +304,25 @@ impl StageState {
         description: &str,
         size: Option<[f64; 3]>,
     ) -> Result<RoutedAsset, ToolError> {
-        let candidates = router::parse::main_categories(description);
+        let mut candidates = router::parse::main_categories(description);
+        let mut description = description.to_string();
+        // A kind that rests elsewhere has a sibling for this stage ("storage bins" the prompt
+        // puts on the floor are floor bins): build that one.
+        if let (Some(&first), Some(want)) = (candidates.first(), self.kind.support())
+            && !candidates
+                .iter()
+                .any(|c| procedural::prior(c).is_some_and(|p| p.support == want))
+            && let Some(sibling) = procedural::support_sibling(first, want)
+        {
+            let (from, to) = (first.replace('_', " "), sibling.replace('_', " "));
+            description = if description.contains(&from) {
+                description.replace(&from, &to)
+            } else {
+                to
+            };
+            candidates = router::parse::main_categories(&description);
+        }
+        let description = description.as_str();
         let category = candidates.first().copied();
         if let (Some(category), Some(want)) = (category, self.kind.support())
             && let Some(prior) = procedural::prior(category)

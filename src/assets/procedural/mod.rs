@@ -276,6 +276,26 @@ pub fn prior(category: &str) -> Option<&'static Prior> {
     priors().get(category)
 }
 
+/// The category of `category`'s generator that rests on `support` and answers to the same
+/// head noun ("storage bin" on a shelf, "toy bin" on the floor: both are a "bin"), when
+/// `category` itself rests elsewhere.
+pub fn support_sibling(category: &str, support: SupportClass) -> Option<&'static str> {
+    let p = prior(category)?;
+    if p.support == support {
+        return None;
+    }
+    let head = category.rsplit('_').next()?;
+    priors()
+        .iter()
+        .filter(|(c, q)| {
+            q.generator == p.generator
+                && q.support == support
+                && (c.rsplit('_').next() == Some(head) || q.aliases.iter().any(|a| a == head))
+        })
+        .map(|(c, _)| c.as_str())
+        .next()
+}
+
 /// Every category with a generator, sorted.
 pub fn categories() -> Vec<&'static str> {
     priors().keys().map(String::as_str).collect()

@@ -216,11 +216,46 @@ impl Builder<'_> {
             .any(|w| w.noun == noun)
     }
 
+    /// The furniture noun that holds what the prompt puts on the floor ("a pile of blocks on
+    /// the floor"): a rug or mat of the plan, else a rug added for them. Small objects rest on
+    /// the surfaces of furniture, and a rug is the floor's: the pile lies where people play
+    /// or sit, clear of the furniture and the walkways the furniture stage keeps.
+    fn floor_covering(&mut self) -> String {
+        const COVERINGS: [&str; 4] = ["rug", "round rug", "yoga mat", "runner rug"];
+        if let Some(w) = self
+            .plan
+            .furniture
+            .iter()
+            .find(|w| COVERINGS.contains(&w.noun.as_str()))
+        {
+            return w.noun.clone();
+        }
+        if !self.excluded("rug") {
+            let arrangement = self.kb_arrangement("rug").unwrap_or(Arrangement::Center);
+            self.plan.furniture.push(Want {
+                noun: "rug".into(),
+                description: self.default_description("rug", Support::Floor),
+                count: 1,
+                explicit: false,
+                at_least: false,
+                arrangement,
+                height_m: None,
+                parent_instance: None,
+            });
+            return "rug".into();
+        }
+        "any".into()
+    }
+
     /// Small objects without a named parent go where they usually rest; a usual parent the
     /// room lacks is added ("a TV" brings a TV stand).
     pub(super) fn surface_parents(&mut self) {
         let lex = self.lex;
         for k in 0..self.surface.len() {
+            if self.surface[k].parent == "floor" {
+                self.surface[k].parent = self.floor_covering();
+                continue;
+            }
             if !self.surface[k].parent.is_empty() {
                 continue;
             }

@@ -1,0 +1,91 @@
+//! Small objects the prompt puts on the floor: the plan gives them a rug (the room's, or one
+//! added for them), and a pile is a heap over a small patch with a layer on top, not a row.
+
+use scenesmith::pipeline::build_scene;
+use scenesmith::scene::Support;
+use scenesmith::stages::run::Backend;
+
+#[test]
+fn a_pile_of_blocks_on_the_floor_is_a_heap_on_a_rug() {
+    let prompt = "A nursery with a crib, a changing table and a pile of 6 wooden play blocks \
+                  on the floor.";
+    let (state, _) = build_scene(prompt, 3, "floor_pile", &Backend::Builtin).unwrap();
+    let objects = &state.scene.objects;
+    let rug = objects
+        .iter()
+        .find(|o| o.category == "rug")
+        .expect("a rug holds what lies on the floor");
+    let blocks: Vec<_> = objects
+        .iter()
+        .filter(|o| o.category.contains("block"))
+        .collect();
+    assert_eq!(blocks.len(), 6, "the counted blocks are all placed");
+    for b in &blocks {
+        assert!(
+            matches!(&b.support, Support::Object { parent, .. } if *parent == rug.id),
+            "{} rests on {:?}, not on the rug",
+            b.id,
+            b.support
+        );
+    }
+    let xyz: Vec<[f64; 3]> = blocks
+        .iter()
+        .map(|b| {
+            let t = b.world_from_object.translation();
+            [t.x, t.y, t.z]
+        })
+        .collect();
+    let extent = |k: usize| {
+        let lo = xyz.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min);
+        let hi = xyz.iter().map(|p| p[k]).fold(f64::NEG_INFINITY, f64::max);
+        hi - lo
+    };
+    // Six 5 cm blocks: a heap about three blocks across, with at least one block on top.
+    assert!(
+        extent(0) < 0.3 && extent(1) < 0.3,
+        "spread {:.2} x {:.2} m",
+        extent(0),
+        extent(1)
+    );
+    assert!(
+        extent(2) > 0.03,
+        "no second layer: heights differ by {:.3} m",
+        extent(2)
+    );
+}
+
+#[test]
+fn bins_the_prompt_puts_on_the_floor_are_floor_bins() {
+    use scenesmith::assets::procedural::{SupportClass, support_sibling};
+    use scenesmith::stages::StageState;
+    assert_eq!(
+        support_sibling("storage_bin", SupportClass::Floor),
+        Some("toy_bin")
+    );
+    assert_eq!(support_sibling("toy_bin", SupportClass::Floor), None);
+    assert!(StageState::names("storage bin", "toy_bin"));
+    assert!(!StageState::names("storage bin", "laundry_basket"));
+    // Two bins on the floor holding toys: both built, the toys inside them.
+    let prompt = "A playroom with two bins. One bin contains 2 teddy bears. The other bin \
+                  contains at least 5 wooden blocks.";
+    let (state, _) = build_scene(prompt, 1, "floor_bins", &Backend::Builtin).unwrap();
+    let bins: Vec<&str> = state
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.category == "toy_bin")
+        .map(|o| o.id.as_str())
+        .collect();
+    assert_eq!(bins.len(), 2, "{bins:?}");
+    let blocks_in_bins = state
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.category == "wooden_block")
+        .filter(|o| matches!(&o.support, Support::Object { parent, .. } if bins.contains(&parent.as_str())))
+        .count();
+    assert!(
+        blocks_in_bins >= 5,
+        "{blocks_in_bins} wooden blocks in the bins"
+    );
+}
