@@ -89,3 +89,26 @@ fn bins_the_prompt_puts_on_the_floor_are_floor_bins() {
         "{blocks_in_bins} wooden blocks in the bins"
     );
 }
+
+#[test]
+fn a_pile_of_plates_lies_in_short_stacks() {
+    let prompt = "A dining room with a table and a pile of 6 plates on the table.";
+    let (state, _) = build_scene(prompt, 2, "plate_pile", &Backend::Builtin).unwrap();
+    let plates: Vec<_> = state
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.category == "plate")
+        .collect();
+    let stacked = plates
+        .iter()
+        .filter(|o| matches!(&o.support, Support::Object { surface, .. } if surface == "stack"))
+        .count();
+    let bases = plates.len() - stacked;
+    assert!(plates.len() >= 6, "{} plates", plates.len());
+    // Six plates nest in stacks of at most four: two bases, the rest on them.
+    assert!(
+        bases <= plates.len().div_ceil(4) + 1,
+        "{bases} plates lie on their own"
+    );
+}

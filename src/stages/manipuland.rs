@@ -415,21 +415,8 @@ fn place_stack(state: &mut StageState, a: GroupArgs) -> Result<PlaceResult, Tool
     }
     let s = find_surface(state, &a.surface)?;
     let routed = state.route_asset(&a.description, None)?;
-    let rec = state.scene.scene.assets[&routed.asset].clone();
-    let asset = state.scene.assets[&routed.asset].clone();
-    let pitch = stack_pitch(&asset);
-    let at = a.u.zip(a.v);
-    let (base, _) =
-        fit(state, &s, &rec, &item_rotation(0.0, false), at, &[]).map_err(ToolError::failed)?;
-    let height = rec.bounds[1][2] - rec.bounds[0][2];
-    let max = (((s.surface.clearance - height) / pitch).floor() as u32 + 1).max(1);
-    let n = a.count.min(max);
-    let mut ids = vec![add_item(state, &routed, base, &s.parent.id, &s.surface.id)];
-    for k in 1..n {
-        let pose = Pose::from_xyz(0.0, 0.0, pitch * k as f64 + LIFT).compose(&base);
-        let below = ids[ids.len() - 1].clone();
-        ids.push(add_item(state, &routed, pose, &below, "stack"));
-    }
+    let ids = stack_on(state, &s, &routed, a.count, a.u.zip(a.v)).map_err(ToolError::failed)?;
+    let n = ids.len() as u32;
     let notes = if n < a.count {
         vec![format!(
             "only {n} fit under the free height of {}; start another stack",
@@ -439,6 +426,39 @@ fn place_stack(state: &mut StageState, a: GroupArgs) -> Result<PlaceResult, Tool
         vec![]
     };
     result_for(state, &ids, [routed.notes.clone(), notes].concat())
+}
+
+/// Copies of a nesting item (plates, bowls) in one heap: at most this many per stack.
+const NESTED_PILE: u32 = 4;
+
+/// Whether copies of the routed asset lie in one another (plates, bowls) rather than on top.
+fn nests(state: &StageState, routed: &RoutedAsset) -> bool {
+    let asset = &state.scene.assets[&routed.asset];
+    let [lo, hi] = asset.bounds();
+    stack_pitch(asset) < 0.6 * (hi[2] - lo[2])
+}
+
+/// One stack of up to `count` copies on `s` (at `at` or the first free spot), as many as
+/// the free height allows.
+fn stack_on(
+    state: &mut StageState,
+    s: &SurfaceRef,
+    routed: &RoutedAsset,
+    count: u32,
+    at: Option<(f64, f64)>,
+) -> Result<Vec<String>, String> {
+    let rec = state.scene.scene.assets[&routed.asset].clone();
+    let pitch = stack_pitch(&state.scene.assets[&routed.asset]);
+    let (base, _) = fit(state, s, &rec, &item_rotation(0.0, false), at, &[])?;
+    let height = rec.bounds[1][2] - rec.bounds[0][2];
+    let max = (((s.surface.clearance - height) / pitch).floor() as u32 + 1).max(1);
+    let mut ids = vec![add_item(state, routed, base, &s.parent.id, &s.surface.id)];
+    for k in 1..count.min(max) {
+        let pose = Pose::from_xyz(0.0, 0.0, pitch * k as f64 + LIFT).compose(&base);
+        let below = ids[ids.len() - 1].clone();
+        ids.push(add_item(state, routed, pose, &below, "stack"));
+    }
+    Ok(ids)
 }
 
 /// Places `count` copies in layers over a surface (piles and fills).
@@ -642,7 +662,20 @@ fn place_pile(state: &mut StageState, a: GroupArgs) -> Result<PlaceResult, ToolE
     }
     let s = find_surface(state, &a.surface)?;
     let routed = state.route_asset(&a.description, None)?;
-    let ids = place_layers(state, &s, &routed, a.count)?;
+    let ids = if nests(state, &routed) && !s.surface.id.starts_with("inside") {
+        // Plates and bowls in a heap lie in one another: a few short stacks.
+        let mut ids = Vec::new();
+        while (ids.len() as u32) < a.count {
+            let n = (a.count - ids.len() as u32).min(NESTED_PILE);
+            let Ok(stack) = stack_on(state, &s, &routed, n, None) else {
+                break;
+            };
+            ids.extend(stack);
+        }
+        ids
+    } else {
+        place_layers(state, &s, &routed, a.count)?
+    };
     if ids.is_empty() {
         return Err(ToolError::failed(format!(
             "no room for a pile on {}",
