@@ -180,10 +180,14 @@ pub struct Exit {
     pub axis: Vector3<f64>,
 }
 
+/// Overlaps shallower than this are grazes (see [`exit_direction`]), metres.
+const GRAZE: f64 = 1e-3;
+
 /// A way out for two penetrating pieces (the projection's linearisation), or `None` when they
 /// are apart: among the face planes of the thinner piece that the other piece's centre lies
 /// beyond, the one needing the least motion; the minimum-translation axis of the
-/// separating-axis test when the centre lies beyond none (deep overlaps).
+/// separating-axis test when the centre lies beyond none (deep overlaps), or for a graze
+/// (under 1 mm) when every face exit costs more than crossing the thinner piece.
 ///
 /// The minimum translation can point through the wrong side of a thin part: a book pushed
 /// through a bookcase's 8 mm back panel overlaps it least sideways, along the panel, into the
@@ -245,7 +249,12 @@ pub fn exit_direction(
             }
         }
     }
-    let (exit_depth, axis) = best.unwrap_or((depth, minimum_axis));
+    // A graze (under 1 mm) leaves along the minimum translation unless a face exit costs
+    // about as little: faces far from the contact mislead (a plate's slanted rim touching a
+    // shelf by 0.1 mm would otherwise leave through the shelf, 4 cm down).
+    let (exit_depth, axis) = best
+        .filter(|(d, _)| depth >= GRAZE || *d <= depth + 1.5 * ta.min(tb) + GRAZE)
+        .unwrap_or((depth, minimum_axis));
     Some(Exit {
         depth,
         minimum_axis,
@@ -484,6 +493,34 @@ mod tests {
             )
             .is_none()
         );
+    }
+
+    /// A plate's slanted rim piece grazing a shelf panel by 0.1 mm leaves upwards by about
+    /// 0.1 mm, not through the panel along a face far from the contact.
+    #[test]
+    fn a_graze_leaves_along_the_minimum_translation() {
+        let panel = ConvexPiece::cuboid([0.0, 0.0, 0.089], [0.8, 0.45, 0.018]).unwrap();
+        // Parallelogram in x-z (lowest along the edge at x = 0), extruded 5 cm along y.
+        let mut pts = Vec::new();
+        for y in [0.0, 0.05] {
+            for (x, z) in [(0.0, 0.0), (0.04, 0.02), (0.04, 0.028), (0.0, 0.008)] {
+                pts.push([x, y, z]);
+            }
+        }
+        let rim = ConvexPiece::from_points(&pts).unwrap();
+        let a = PosedPiece::new(&panel, &Pose::IDENTITY);
+        for (x, y) in [(0.25, -0.2), (-0.3, 0.1), (0.1, 0.15), (0.33, -0.05)] {
+            let b = PosedPiece::new(&rim, &Pose::from_xyz(x, y, 0.098 - 1e-4));
+            let zero = Vector3::zeros();
+            let exit = exit_direction(&a, &zero, &b, &zero).unwrap();
+            assert!(exit.depth < 2e-4, "{x},{y}: depth {}", exit.depth);
+            assert!(
+                exit.exit_depth < 1e-3 && exit.axis.z > 0.9,
+                "{x},{y}: leaves {:.4} m along {:?}",
+                exit.exit_depth,
+                exit.axis
+            );
+        }
     }
 
     #[test]
