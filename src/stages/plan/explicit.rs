@@ -31,7 +31,9 @@ impl Builder<'_> {
         self.reading.mentions.iter().any(|m| {
             !m.negated
                 && matches!(m.count, Count::Exactly(_))
-                && (m.category == noun || covers(self.lex, noun, &m.category))
+                && (m.category == noun
+                    || covers(self.lex, noun, &m.category)
+                    || same_build(noun, &m.category))
         })
     }
 
@@ -420,4 +422,11 @@ impl Builder<'_> {
             place_settings,
         });
     }
+}
+
+/// Whether the library builds the same category for both nouns ("teddy bear" and "stuffed
+/// animal" are both stuffed animals).
+fn same_build(a: &str, b: &str) -> bool {
+    let of = crate::stages::StageState::category_of;
+    of(a).is_some_and(|c| of(b) == Some(c))
 }
