@@ -88,6 +88,15 @@ fn bins_the_prompt_puts_on_the_floor_are_floor_bins() {
         blocks_in_bins >= 5,
         "{blocks_in_bins} wooden blocks in the bins"
     );
+    // "2 teddy bears" is an exact count of what the library builds as stuffed animals: the
+    // room's defaults add no more of them.
+    let bears = state
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.category == "stuffed_animal")
+        .count();
+    assert_eq!(bears, 2);
 }
 
 #[test]
