@@ -100,11 +100,14 @@ impl BuiltinManipulandDesigner {
                 }
             }
             Arrangement::Inside { parent } => {
-                let containers: Vec<String> = state
+                // The stage's own entity first when it is such a container: its share goes
+                // into it, not into the first container of the room.
+                let mut containers: Vec<String> = state
                     .room_objects()
                     .filter(|o| StageState::names(parent, &o.category))
                     .map(|o| o.id.clone())
                     .collect();
+                containers.sort_by_key(|c| c != entity);
                 for c in containers {
                     if need == 0 {
                         break;
