@@ -1,5 +1,7 @@
-//! Small objects the prompt puts on the floor: the plan gives them a rug (the room's, or one
-//! added for them), and a pile is a heap over a small patch with a layer on top, not a row.
+//! Where small objects go when the prompt says where: on the floor (the plan gives them a rug,
+//! the room's or one added for them), in a pile (a heap over a small patch with a layer on
+//! top, not a row; plates and bowls in short stacks), in bins on the floor (floor bins, each
+//! with its share), in the sink (its basin, not the shelf behind its doors).
 
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::Support;
@@ -120,4 +122,19 @@ fn a_pile_of_plates_lies_in_short_stacks() {
         bases <= plates.len().div_ceil(4) + 1,
         "{bases} plates lie on their own"
     );
+}
+
+#[test]
+fn dishes_in_the_sink_go_into_its_basin() {
+    let prompt = "A kitchen with a sink. The sink contains a mess of dishes with at least 5 \
+                  plates, 3 glasses, and 5 bowls.";
+    let (state, _) = build_scene(prompt, 0, "sink_mess", &Backend::Builtin).unwrap();
+    let in_basin = state
+        .scene
+        .objects
+        .iter()
+        .filter(|o| matches!(&o.support, Support::Object { surface, .. } if surface == "basin"))
+        .count();
+    // The basin is open (not behind the vanity's doors): it is filled first.
+    assert!(in_basin >= 3, "{in_basin} objects in the basin");
 }

@@ -71,7 +71,8 @@ impl SurfaceRef {
             .get(&self.parent.asset)
             .is_some_and(|rec| {
                 self.surface.link != rec.root_link
-                    || (!rec.joints.is_empty() && self.surface.id != "top")
+                    || (!rec.joints.is_empty()
+                        && !matches!(self.surface.id.as_str(), "top" | "basin"))
             })
     }
 
