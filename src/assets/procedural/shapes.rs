@@ -129,12 +129,22 @@ pub fn ellipsoid_mesh(center: [f64; 3], radii: [f64; 3], segments: usize) -> Tri
     })
 }
 
-/// The convex hull of an ellipsoid sampled on a coarse grid.
+/// The convex hull of an ellipsoid sampled on a coarse grid, standing on a small flat facet
+/// instead of its bottom pole: a hull balanced on a vertex is at rest only in theory (a ball
+/// or an orange settles on it, then tips 15 degrees onto a facet in the next simulation).
 pub fn ellipsoid_piece(center: [f64; 3], radii: [f64; 3]) -> Result<ConvexPiece, GeometryError> {
     let c = Vector3::from(center);
     let r = Vector3::from(radii);
-    let pts: Vec<[f64; 3]> = sphere_dirs(12, 6)
+    const FOOT_Z: f64 = -0.97;
+    let foot = (1.0 - FOOT_Z * FOOT_Z).sqrt();
+    let dirs = sphere_dirs(12, 6)
         .into_iter()
+        .skip(1)
+        .chain((0..12).map(|i| {
+            let th = std::f64::consts::TAU * (f64::from(i) + 0.5) / 12.0;
+            Vector3::new(foot * th.cos(), foot * th.sin(), FOOT_Z)
+        }));
+    let pts: Vec<[f64; 3]> = dirs
         .map(|d| {
             let p = c + d.component_mul(&r);
             [p.x, p.y, p.z]
@@ -368,6 +378,21 @@ pub fn yz_prism_piece(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// An ellipsoid stands on a flat facet (12 hull vertices at its lowest height), not on a
+    /// pole vertex it would tip off.
+    #[test]
+    fn ellipsoids_stand_on_a_facet() {
+        let piece = ellipsoid_piece([0.0, 0.0, 0.1], [0.1, 0.1, 0.1]).unwrap();
+        let low = piece
+            .vertices
+            .iter()
+            .map(|v| v[2])
+            .fold(f64::INFINITY, f64::min);
+        let feet = piece.vertices.iter().filter(|v| v[2] < low + 1e-9).count();
+        assert_eq!(feet, 12);
+        assert!((low - 0.003).abs() < 1e-9, "{low}");
+    }
     use crate::assets::physical::check_watertight;
     use crate::geometry::mesh::enclosed_volume;
 
