@@ -216,6 +216,21 @@ impl Builder<'_> {
             .any(|w| w.noun == noun)
     }
 
+    /// One piece the plan adds to hold small objects: placed by the knowledge base's rule for
+    /// it, or `fallback`.
+    fn added_piece(&self, noun: &str, support: Support, fallback: Arrangement) -> Want {
+        Want {
+            noun: noun.to_string(),
+            description: self.default_description(noun, support),
+            count: 1,
+            explicit: false,
+            at_least: false,
+            arrangement: self.kb_arrangement(noun).unwrap_or(fallback),
+            height_m: None,
+            parent_instance: None,
+        }
+    }
+
     /// The furniture noun that holds what the prompt puts on the floor ("a pile of blocks on
     /// the floor"): a rug or mat of the plan, else a rug added for them. Small objects rest on
     /// the surfaces of furniture, and a rug is the floor's: the pile lies where people play
@@ -231,17 +246,8 @@ impl Builder<'_> {
             return w.noun.clone();
         }
         if !self.excluded("rug") {
-            let arrangement = self.kb_arrangement("rug").unwrap_or(Arrangement::Center);
-            self.plan.furniture.push(Want {
-                noun: "rug".into(),
-                description: self.default_description("rug", Support::Floor),
-                count: 1,
-                explicit: false,
-                at_least: false,
-                arrangement,
-                height_m: None,
-                parent_instance: None,
-            });
+            let rug = self.added_piece("rug", Support::Floor, Arrangement::Center);
+            self.plan.furniture.push(rug);
             return "rug".into();
         }
         "any".into()
@@ -284,17 +290,7 @@ impl Builder<'_> {
             } else if let Some(p) = rests.first().filter(|p| !self.excluded(p)) {
                 let p = p.clone();
                 let support = lex.lookup(&p).map_or(Support::Floor, |e| e.support);
-                let arrangement = self.kb_arrangement(&p).unwrap_or(Arrangement::AgainstWall);
-                let want = Want {
-                    noun: p.clone(),
-                    description: self.default_description(&p, support),
-                    count: 1,
-                    explicit: false,
-                    at_least: false,
-                    arrangement,
-                    height_m: None,
-                    parent_instance: None,
-                };
+                let want = self.added_piece(&p, support, Arrangement::AgainstWall);
                 match support {
                     Support::Wall => self.plan.wall.push(want),
                     _ => self.plan.furniture.push(want),
