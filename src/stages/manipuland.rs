@@ -416,7 +416,9 @@ fn place_stack(state: &mut StageState, a: GroupArgs) -> Result<PlaceResult, Tool
     }
     let s = find_surface(state, &a.surface)?;
     let routed = state.route_asset(&a.description, None)?;
-    let ids = stack_on(state, &s, &routed, a.count, a.u.zip(a.v)).map_err(ToolError::failed)?;
+    let pitch = stack_pitch(&state.scene.assets[&routed.asset]);
+    let ids =
+        stack_on(state, &s, &routed, pitch, a.count, a.u.zip(a.v)).map_err(ToolError::failed)?;
     let n = ids.len() as u32;
     let notes = if n < a.count {
         vec![format!(
@@ -432,24 +434,29 @@ fn place_stack(state: &mut StageState, a: GroupArgs) -> Result<PlaceResult, Tool
 /// Copies of a nesting item (plates, bowls) in one heap: at most this many per stack.
 const NESTED_PILE: u32 = 4;
 
-/// Whether copies of the routed asset lie in one another (plates, bowls) rather than on top.
-fn nests(state: &StageState, routed: &RoutedAsset) -> bool {
-    let asset = &state.scene.assets[&routed.asset];
-    let [lo, hi] = asset.bounds();
-    stack_pitch(asset) < 0.6 * (hi[2] - lo[2])
+/// Whether copies of an asset stacked `pitch` apart lie in one another (plates, bowls)
+/// rather than on top.
+fn nests(state: &StageState, routed: &RoutedAsset, pitch: f64) -> bool {
+    let [lo, hi] = state.scene.assets[&routed.asset].bounds();
+    pitch < 0.6 * (hi[2] - lo[2])
 }
 
-/// One stack of up to `count` copies on `s` (at `at` or the first free spot), as many as
-/// the free height allows.
+/// Whether a surface is a container's cavity (things pack in it and heap over its rim).
+fn is_cavity(s: &SurfaceRef) -> bool {
+    s.surface.id.starts_with("inside")
+}
+
+/// One stack of up to `count` copies `pitch` apart on `s` (at `at` or the first free spot),
+/// as many as the free height allows.
 fn stack_on(
     state: &mut StageState,
     s: &SurfaceRef,
     routed: &RoutedAsset,
+    pitch: f64,
     count: u32,
     at: Option<(f64, f64)>,
 ) -> Result<Vec<String>, String> {
     let rec = state.scene.scene.assets[&routed.asset].clone();
-    let pitch = stack_pitch(&state.scene.assets[&routed.asset]);
     let (base, _) = fit(state, s, &rec, &item_rotation(0.0, false), at, &[])?;
     let height = rec.bounds[1][2] - rec.bounds[0][2];
     let max = (((s.surface.clearance - height) / pitch).floor() as u32 + 1).max(1);
@@ -476,7 +483,7 @@ fn place_layers(
     // In a container's cavity things pack tight (quarter turns with a little play) and the
     // top layer may heap above the rim; on an open surface a pile turns every piece its own
     // way.
-    let cavity = s.surface.id.starts_with("inside");
+    let cavity = is_cavity(s);
     let heap = if cavity { height } else { 0.0 };
     // A bowl widens upwards: above the bottom layer, things rest on the sloping wall and on
     // each other over the square inscribed in the opening, not only over the flat bottom.
@@ -599,11 +606,16 @@ fn pile_patch(
     patch.bounds[0][1] = -side / 2.0;
     patch.bounds[1][1] = side / 2.0;
     let (_, slot) = fit(state, s, &patch, &UnitQuaternion::identity(), None, &[]).ok()?;
-    let mut out = s.surface.clone();
-    out.center[0] += slot.u;
-    out.center[1] += slot.v;
-    out.size = [side, side];
-    Some(out)
+    Some(sub_region(&s.surface, slot.u, slot.v, [side, side]))
+}
+
+/// The rectangle of `surface` of `size` centred at (`u`, `v`) in its frame.
+fn sub_region(surface: &SurfaceRecord, u: f64, v: f64, size: [f64; 2]) -> SurfaceRecord {
+    let mut out = surface.clone();
+    out.center[0] += u;
+    out.center[1] += v;
+    out.size = size;
+    out
 }
 
 /// The part of `surface` under the footprints of `slots` (the next pile layer rests on
@@ -613,11 +625,12 @@ fn footprint_region(surface: &SurfaceRecord, slots: &[Slot]) -> Option<SurfaceRe
     let hi_u = slots.iter().map(|s| s.u + s.hu).reduce(f64::max)?;
     let lo_v = slots.iter().map(|s| s.v - s.hv).reduce(f64::min)?;
     let hi_v = slots.iter().map(|s| s.v + s.hv).reduce(f64::max)?;
-    let mut out = surface.clone();
-    out.center[0] += (lo_u + hi_u) / 2.0;
-    out.center[1] += (lo_v + hi_v) / 2.0;
-    out.size = [hi_u - lo_u, hi_v - lo_v];
-    Some(out)
+    Some(sub_region(
+        surface,
+        (lo_u + hi_u) / 2.0,
+        (lo_v + hi_v) / 2.0,
+        [hi_u - lo_u, hi_v - lo_v],
+    ))
 }
 
 /// Like [`fit`] but only against `extra` (items of the same layer), for upper pile layers.
@@ -663,12 +676,13 @@ fn place_pile(state: &mut StageState, a: GroupArgs) -> Result<PlaceResult, ToolE
     }
     let s = find_surface(state, &a.surface)?;
     let routed = state.route_asset(&a.description, None)?;
-    let ids = if nests(state, &routed) && !s.surface.id.starts_with("inside") {
+    let pitch = stack_pitch(&state.scene.assets[&routed.asset]);
+    let ids = if nests(state, &routed, pitch) && !is_cavity(&s) {
         // Plates and bowls in a heap lie in one another: a few short stacks.
         let mut ids = Vec::new();
         while (ids.len() as u32) < a.count {
             let n = (a.count - ids.len() as u32).min(NESTED_PILE);
-            let Ok(stack) = stack_on(state, &s, &routed, n, None) else {
+            let Ok(stack) = stack_on(state, &s, &routed, pitch, n, None) else {
                 break;
             };
             ids.extend(stack);

@@ -15,12 +15,16 @@ use crate::scene::ObjectKind;
 pub struct BuiltinManipulandDesigner;
 
 /// How many of the plan item `want` rest (transitively) on `entity`.
+/// An object counts when its noun names it or when it is what the router builds for the
+/// item's description ("wooden play blocks" are the library's wooden blocks, a variant of the
+/// toy block the noun names).
 fn count_on(state: &StageState, entity: &str, want: &Want) -> u32 {
+    let built = StageState::category_of(&want.description);
     items_on(state, entity)
         .iter()
         .filter(|id| {
             state.scene.scene.object(id).is_some_and(|o| {
-                StageState::names_described(&want.noun, &want.description, &o.category)
+                built == Some(o.category.as_str()) || StageState::names(&want.noun, &o.category)
             })
         })
         .count() as u32

@@ -288,13 +288,6 @@ impl StageState {
                 .is_some_and(|u| crate::scene::sanitize_name(&u) == category)
     }
 
-    /// True when an object of `category` is what a plan item asks for: what `noun` names, or
-    /// what the router builds for its `description` ("wooden play blocks" are the library's
-    /// wooden blocks, a variant of the toy block the noun names).
-    pub fn names_described(noun: &str, description: &str, category: &str) -> bool {
-        Self::names(noun, category) || Self::category_of(description) == Some(category)
-    }
-
     /// Builds (or reuses) the asset for `description` through the asset router (attributes
     /// such as "red oak" choose materials; an unknown noun gets a generic shape of the stage's
     /// support class, or an external mesh when one is configured), refusing objects of another
