@@ -275,10 +275,11 @@ impl StageState {
     /// True when an object of `category` is what `noun` asks for: a category the router can
     /// build for it (at any stage), or the generic stand-in named after an unknown noun.
     pub fn names(noun: &str, category: &str) -> bool {
+        if category == noun || category == crate::scene::sanitize_name(noun) {
+            return true;
+        }
         let main = router::parse::main_categories(noun);
-        category == noun
-            || category == crate::scene::sanitize_name(noun)
-            || main.contains(&category)
+        main.contains(&category)
             || procedural::prior(category).is_some_and(|p| {
                 main.iter()
                     .any(|c| procedural::support_sibling(c, p.support) == Some(category))
@@ -297,14 +298,17 @@ impl StageState {
         description: &str,
         size: Option<[f64; 3]>,
     ) -> Result<RoutedAsset, ToolError> {
+        let for_stage = |candidates: &[&str], want: SupportClass| {
+            candidates
+                .iter()
+                .any(|c| procedural::prior(c).is_some_and(|p| p.support == want))
+        };
         let mut candidates = router::parse::main_categories(description);
         let mut description = description.to_string();
         // A kind that rests elsewhere has a sibling for this stage ("storage bins" the prompt
         // puts on the floor are floor bins): build that one.
         if let (Some(&first), Some(want)) = (candidates.first(), self.kind.support())
-            && !candidates
-                .iter()
-                .any(|c| procedural::prior(c).is_some_and(|p| p.support == want))
+            && !for_stage(&candidates, want)
             && let Some(sibling) = procedural::support_sibling(first, want)
         {
             let (from, to) = (first.replace('_', " "), sibling.replace('_', " "));
@@ -319,9 +323,7 @@ impl StageState {
         let category = candidates.first().copied();
         if let (Some(category), Some(want)) = (category, self.kind.support())
             && let Some(prior) = procedural::prior(category)
-            && !candidates
-                .iter()
-                .any(|c| procedural::prior(c).is_some_and(|p| p.support == want))
+            && !for_stage(&candidates, want)
         {
             return Err(ToolError::failed(format!(
                 "{category} is a {:?} object; place it in the {} stage, not the {} stage",
