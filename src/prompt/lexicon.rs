@@ -277,7 +277,17 @@ impl Lexicon {
     /// The longest object noun starting at `tokens[at]`: (words used, entry index, plural).
     /// Tries the words as written, then with the last word singular, then all words singular.
     pub fn noun_at(&self, tokens: &[Token], at: usize) -> Option<(usize, usize, bool)> {
-        for len in (1..=MAX_PHRASE).rev() {
+        self.noun_at_most(tokens, at, MAX_PHRASE)
+    }
+
+    /// [`Lexicon::noun_at`] with at most `max` words.
+    pub fn noun_at_most(
+        &self,
+        tokens: &[Token],
+        at: usize,
+        max: usize,
+    ) -> Option<(usize, usize, bool)> {
+        for len in (1..=max.min(MAX_PHRASE)).rev() {
             let Some(words) = words_at(tokens, at, len) else {
                 continue;
             };

@@ -158,11 +158,10 @@ pub fn read(prompt: &str) -> Reading {
         .into_iter()
         .map(|r| chunk::chunk_sentence(lex, kb, &toks, r))
         .collect();
-    let first: &[chunk::Chunk] = chunks.first().map_or(&[], Vec::as_slice);
-    let st = rooms::structure(lex, &toks, first);
+    let st = rooms::structure(lex, &toks, &chunks);
     let mut it = interpret::Interp::new(lex, &toks, st.rooms.clone(), st.scope);
     for (i, ch) in chunks.iter().enumerate() {
-        if st.scope == Scope::House && i == 0 {
+        if st.list_sentence && i == 0 {
             // The room list; its phrases are rooms, not objects.
             continue;
         }

@@ -147,6 +147,38 @@ pub(crate) fn quantifier_fits(lex: &Lexicon, tokens: &[Token], i: usize) -> bool
     }
 }
 
+/// The longest lexicon noun at `j` that agrees with the phrase's determiner: "A TV stands
+/// against the wall" is a TV that stands, not "TV stands" — a singular determiner (or "the"
+/// before a preposition) with a plural compound whose last word is also a verb keeps the
+/// shorter noun and leaves the verb.
+fn agree(
+    lex: &Lexicon,
+    np: &Np,
+    tokens: &[Token],
+    j: usize,
+    end: usize,
+) -> Option<(usize, usize, bool)> {
+    let found = lex.noun_at(tokens, j).filter(|(n, ..)| j + n <= end)?;
+    let (n, _, plural) = found;
+    if !plural || n < 2 {
+        return Some(found);
+    }
+    let last = j + n - 1;
+    let Some(w) = word(tokens, last) else {
+        return Some(found);
+    };
+    let singular_det = matches!(np.det.as_deref(), Some("indefinite" | "each" | "another"))
+        || np.number == Some(1);
+    let verb_like_next = lex.preposition_at(tokens, last + 1).is_some()
+        || word(tokens, last + 1).is_some_and(|x| lex.determiner(x).is_some());
+    let agrees_as_verb = lex.verb(w).is_some()
+        && (singular_det || (np.det.as_deref() == Some("definite") && verb_like_next));
+    if agrees_as_verb && let Some(shorter) = lex.noun_at_most(tokens, j, n - 1) {
+        return Some(shorter);
+    }
+    Some(found)
+}
+
 /// Parses a noun phrase starting at `i`; returns it and the index after it.
 pub(crate) fn parse_np(
     lex: &Lexicon,
@@ -311,7 +343,7 @@ pub(crate) fn parse_np(
         np.has_det() || np.ordinal.is_some() || !np.attrs.modifiers.is_empty() || np.negated;
     let w = at(j)?;
     // Head.
-    let noun = lex.noun_at(tokens, j).filter(|(n, ..)| j + n <= end);
+    let noun = agree(lex, &np, tokens, j, end);
     let room = kb.room_type_at(tokens, j).filter(|(n, _)| j + n <= end);
     let noun_len = noun.map_or(0, |(n, ..)| n);
     let room_len = room.map_or(0, |(n, _)| n);

@@ -135,6 +135,8 @@ pub(crate) struct Structure {
     pub styles: Vec<String>,
     /// Density of the whole.
     pub density: Option<Density>,
+    /// The first sentence is the room list (its phrases are rooms, not objects).
+    pub list_sentence: bool,
 }
 
 fn ordinal_word(n: u32) -> &'static str {
@@ -159,9 +161,70 @@ fn ordinal_word(n: u32) -> &'static str {
     W.get(n as usize).copied().unwrap_or("")
 }
 
-/// Reads the room list of the first sentence's chunks. `tokens` give the house name.
-pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Structure {
-    let with_at = first.iter().position(|c| c.item == Item::With);
+/// Where the room list of a sentence starts: after "with", a possession verb ("includes",
+/// "features", "has", "consists of"), "including", or a colon.
+fn list_start(tokens: &[Token], chunks: &[Chunk]) -> Option<usize> {
+    chunks.iter().position(|c| match &c.item {
+        Item::With | Item::Including => true,
+        Item::Verb(class, _) => class == "possess",
+        Item::Comma => tokens.get(c.range.start).is_some_and(|t| t.is_punct(':')),
+        _ => false,
+    })
+}
+
+/// True for "room", "rooms", "space": a room word that names no type.
+fn generic_room(np: &Np) -> bool {
+    matches!(&np.head, Head::Room { key, .. } if key == "room")
+}
+
+/// A zone inside a room rather than a room: "a seating area", "a reading nook".
+fn zone(np: &Np) -> bool {
+    matches!(&np.head, Head::Room { words, .. } if ["area", "corner", "nook", "zone", "space"].iter().any(|z| words.ends_with(z)))
+}
+
+/// The subject of a later sentence when it is a room that describes itself ("The dining room
+/// features ...", "There is also a pantry"): the room phrase and whether it comes with a verb.
+fn subject_room(chunks: &[Chunk]) -> Option<&Np> {
+    let mut k = 0;
+    // "There is/are ...", "Next, ...": skip the opener.
+    while let Some(c) = chunks.get(k) {
+        match &c.item {
+            Item::Other(w) if w == "there" || w == "next" || w == "finally" || w == "also" => {
+                k += 1
+            }
+            Item::Verb(class, _) if class == "locate" && k > 0 => k += 1,
+            Item::Comma => k += 1,
+            _ => break,
+        }
+    }
+    let there = k > 0
+        && chunks
+            .first()
+            .is_some_and(|c| matches!(&c.item, Item::Other(w) if w == "there"));
+    let Some(Chunk {
+        item: Item::Np(np), ..
+    }) = chunks.get(k)
+    else {
+        return None;
+    };
+    if !matches!(np.head, Head::Room { .. }) || generic_room(np) || np.negated {
+        return None;
+    }
+    // A subject has its own verb (or "with"); after "there is" the phrase is the subject.
+    let verb_follows = matches!(
+        chunks.get(k + 1).map(|c| &c.item),
+        Some(Item::Verb(..) | Item::With)
+    );
+    (there || verb_follows).then_some(np.as_ref())
+}
+
+/// Reads the house structure: the room list of the first sentence ("A dental office with a
+/// reception, two exam rooms, ...", "The space includes three rooms: a living room, ..."),
+/// then rooms that later sentences introduce as their subjects ("The dining room features
+/// ..."). `sentences` are the chunks of every sentence; `tokens` give the house name.
+pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], sentences: &[Vec<Chunk>]) -> Structure {
+    let first: &[Chunk] = sentences.first().map_or(&[], Vec::as_slice);
+    let with_at = list_start(tokens, first);
     let head_np = first[..with_at.unwrap_or(first.len())]
         .iter()
         .find_map(|c| match &c.item {
@@ -184,8 +247,9 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Str
         for c in &first[w + 1..] {
             match &c.item {
                 Item::Np(np) => {
-                    // "in the middle of the room" is a place, not a listed room.
-                    let listed_room = !after_prep && !np.is_definite();
+                    // "in the middle of the room" is a place, not a listed room; "three
+                    // rooms:" counts the rooms that follow.
+                    let listed_room = !after_prep && !np.is_definite() && !generic_room(np);
                     after_prep = false;
                     if listed_room && let Head::Room { .. } = np.head {
                         let parent = if after_with { last_room } else { None };
@@ -204,47 +268,98 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Str
     }
     let head_is_room = head_np
         .as_ref()
-        .is_some_and(|(np, _)| matches!(np.head, Head::Room { .. }));
+        .is_some_and(|(np, _)| matches!(np.head, Head::Room { .. }) && !generic_room(np));
     let listed_count: u32 = listed
         .iter()
         .map(|(np, _)| np.number.unwrap_or(1).max(1))
         .sum();
     // "A pharmacy with a waiting area": one room with a zone; "a bedroom with an en-suite
     // bathroom": two rooms.
-    let zone = |np: &Np| matches!(&np.head, Head::Room { words, .. } if ["area", "corner", "nook", "zone", "space"].iter().any(|z| words.ends_with(z)));
     let single_zone = listed.len() == 1 && listed.iter().all(|(np, _)| zone(np));
     let is_house = listed_count >= 2 || (listed_count == 1 && head_is_room && !single_zone);
-    if !is_house {
-        // One room: the first room phrase of the sentence (the head, usually).
-        let room_np = first.iter().find_map(|c| match &c.item {
+    let mut st = if is_house {
+        house_from_list(
+            lex,
+            tokens,
+            first,
+            with_at,
+            head_np.map(|(np, _)| np),
+            &listed,
+        )
+    } else {
+        single_room(lex, first, sentences)
+    };
+    st.size_scale = if is_house {
+        size_scale
+    } else {
+        st.rooms
+            .first()
+            .map_or(size_scale, |r| r.size_scale_or(size_scale))
+    };
+    st.styles = styles;
+    st.density = density;
+    st.list_sentence = is_house;
+    add_subject_rooms(lex, sentences, &mut st);
+    st
+}
+
+/// One room: the first room phrase that names a type (the head, usually; "The room is dimly
+/// lit ... in a cozy living room": the living room), else a generic room.
+fn single_room(lex: &Lexicon, first: &[Chunk], sentences: &[Vec<Chunk>]) -> Structure {
+    fn typed(chunks: &[Chunk]) -> Option<&Np> {
+        chunks.iter().find_map(|c| match &c.item {
+            Item::Np(np)
+                if matches!(np.head, Head::Room { .. }) && !generic_room(np) && !np.negated =>
+            {
+                Some(np.as_ref())
+            }
+            _ => None,
+        })
+    }
+    let room_np = typed(first).or_else(|| sentences.iter().skip(1).find_map(|s| typed(s)));
+    let room_np = room_np.or_else(|| {
+        first.iter().find_map(|c| match &c.item {
             Item::Np(np) if matches!(np.head, Head::Room { .. }) => Some(np.as_ref()),
             _ => None,
-        });
-        let mut room = match room_np {
-            Some(np) => match &np.head {
-                Head::Room { key, words } => RoomReading::new(key, words, words.clone()),
-                _ => RoomReading::new("room", "room", "room".into()),
-            },
-            None => RoomReading::new("room", "room", "room".into()),
-        };
-        if let Some(np) = room_np {
-            room.size_scale = size_of(lex, np);
-            room.styles = np.attrs.styles.clone();
-            room.density = density_of(lex, np);
-        }
-        let scale = room.size_scale_or(size_scale);
-        return Structure {
-            scope: Scope::Room,
-            rooms: vec![room],
-            house_type: None,
-            size_scale: scale,
-            styles,
-            density,
-        };
+        })
+    });
+    let mut room = match room_np.map(|np| &np.head) {
+        Some(Head::Room { key, words }) => RoomReading::new(key, words, words.clone()),
+        _ => RoomReading::new("room", "room", "room".into()),
+    };
+    if let Some(np) = room_np {
+        room.size_scale = size_of(lex, np);
+        room.styles = np.attrs.styles.clone();
+        room.density = density_of(lex, np);
     }
+    Structure {
+        scope: Scope::Room,
+        rooms: vec![room],
+        house_type: None,
+        size_scale: 1.0,
+        styles: Vec::new(),
+        density: None,
+        list_sentence: false,
+    }
+}
+
+/// A house from the room list of the first sentence.
+fn house_from_list(
+    lex: &Lexicon,
+    tokens: &[Token],
+    first: &[Chunk],
+    with_at: Option<usize>,
+    head_np: Option<&Np>,
+    listed: &[(&Np, Option<usize>)],
+) -> Structure {
+    let size_scale = head_np.map_or(1.0, |np| size_of(lex, np));
+    let listed_count: u32 = listed
+        .iter()
+        .map(|(np, _)| np.number.unwrap_or(1).max(1))
+        .sum();
     let mut rooms: Vec<RoomReading> = Vec::new();
     if listed_count == 1
-        && let Some((np, _)) = head_np.as_ref()
+        && let Some(np) = head_np
         && let Head::Room { key, words } = &np.head
     {
         let mut r = RoomReading::new(key, words, words.clone());
@@ -254,7 +369,7 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Str
     }
     // listed index -> room indices created for it
     let mut made: Vec<Vec<usize>> = Vec::new();
-    for (np, parent) in &listed {
+    for (np, parent) in listed {
         let Head::Room { key, words } = &np.head else {
             made.push(Vec::new());
             continue;
@@ -294,19 +409,12 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Str
         }
         made.push(ids);
     }
-    // Names stay unique: a second "bathroom" listed separately becomes "bathroom 2".
-    for i in 0..rooms.len() {
-        let dup = rooms[..i]
-            .iter()
-            .filter(|r| r.name == rooms[i].name)
-            .count();
-        if dup > 0 {
-            rooms[i].name = format!("{} {}", rooms[i].name, dup + 1);
-        }
-    }
-    // "A small dental office with ...": the words before "with", without determiners and
+    unique_names(&mut rooms);
+    // "A small dental office with ...": the words before the list, without determiners and
     // size words.
-    let upto = with_at.map_or(0, |w| first[w].range.start);
+    let upto = with_at
+        .and_then(|w| first.get(w))
+        .map_or(0, |c| c.range.start);
     let from = first.first().map_or(0, |c| c.range.start);
     let words: Vec<&str> = tokens[from..upto.max(from)]
         .iter()
@@ -316,6 +424,7 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Str
             lex.determiner(w).is_none()
                 && lex.room_size(w).is_none()
                 && lex.size_adjective(w).is_none()
+                && lex.verb(w).is_none()
         })
         .collect();
     let house_type = (!words.is_empty()).then(|| words.join(" "));
@@ -324,8 +433,74 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Str
         rooms,
         house_type,
         size_scale,
-        styles,
-        density,
+        styles: Vec::new(),
+        density: None,
+        list_sentence: true,
+    }
+}
+
+/// Rooms that later sentences introduce as their subjects and that no room of the structure
+/// is ("The dining room features ..." after "a living room with ..."). Zones ("the seating
+/// area has ...") stay parts of their room.
+fn add_subject_rooms(lex: &Lexicon, sentences: &[Vec<Chunk>], st: &mut Structure) {
+    let mut added = false;
+    for chunks in sentences.iter().skip(1) {
+        let Some(np) = subject_room(chunks) else {
+            continue;
+        };
+        let Head::Room { key, words } = &np.head else {
+            continue;
+        };
+        if zone(np) || np.det.as_deref() == Some("possessive") {
+            continue;
+        }
+        let known = st
+            .rooms
+            .iter()
+            .any(|r| r.room_type == *key || r.words == *words);
+        if known {
+            continue;
+        }
+        if st.rooms.len() == 1 && st.rooms[0].room_type == "room" {
+            // A generic first room is the room this sentence describes.
+            let scale = st.rooms[0].size_scale;
+            st.rooms[0] = RoomReading::new(key, words, words.clone());
+            st.rooms[0].size_scale = scale * size_of(lex, np);
+            continue;
+        }
+        let n = np.number.unwrap_or(1).max(1).min(MAX_SUBJECT_ROOMS);
+        for k in 0..n {
+            let name = if n > 1 {
+                format!("{words} {}", k + 1)
+            } else {
+                words.clone()
+            };
+            let mut r = RoomReading::new(key, words, name);
+            r.ordinal = (n > 1).then_some(k + 1);
+            r.size_scale = size_of(lex, np);
+            st.rooms.push(r);
+        }
+        added = true;
+    }
+    if added {
+        unique_names(&mut st.rooms);
+        st.scope = Scope::House;
+    }
+}
+
+/// Most rooms one subject phrase adds ("Two bathrooms have ...").
+const MAX_SUBJECT_ROOMS: u32 = 20;
+
+/// Names stay unique: a second "bathroom" listed separately becomes "bathroom 2".
+fn unique_names(rooms: &mut [RoomReading]) {
+    for i in 0..rooms.len() {
+        let dup = rooms[..i]
+            .iter()
+            .filter(|r| r.name == rooms[i].name)
+            .count();
+        if dup > 0 {
+            rooms[i].name = format!("{} {}", rooms[i].name, dup + 1);
+        }
     }
 }
 
