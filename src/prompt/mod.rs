@@ -20,6 +20,7 @@ mod phrase;
 pub mod relations;
 pub mod rooms;
 pub mod tokens;
+pub mod wordnet;
 
 use std::collections::BTreeMap;
 use std::sync::OnceLock;
