@@ -13,6 +13,7 @@
 
 pub mod attributes;
 mod chunk;
+pub mod ground;
 mod interpret;
 pub mod lexicon;
 pub mod mentions;

@@ -1,0 +1,417 @@
+//! Grounding nouns in WordNet: is a word a noun at all, does it name a placeable physical
+//! thing (a lamp, an apple, a fern) rather than a feeling, a state or an event ("unease",
+//! "tension", "scream"), does it name a room or a building, and which family of things the
+//! library can build is its nearest hypernym ("chandelier" -> lighting fixture -> ... a
+//! ceiling light; "samovar" -> urn).
+//!
+//! The rules are data (`src/data/lexicon/grounding.json`: anchor synsets, thresholds); the
+//! dictionary is [`super::wordnet`]. This module answers questions about words; it does not
+//! read phrases (see `phrase`) and does not know the asset library: callers say which nouns
+//! count as a family through a predicate.
+
+use std::collections::{HashSet, VecDeque};
+use std::sync::OnceLock;
+
+use serde::Deserialize;
+
+use super::wordnet::{Pos, SynsetId, wordnet};
+
+#[derive(Debug, Deserialize)]
+struct RulesFile {
+    object_under: Vec<String>,
+    not_object_under: Vec<String>,
+    room_under: Vec<String>,
+    family_stop: Vec<String>,
+    count_smoothing: f64,
+    min_share: f64,
+    min_share_with_evidence: f64,
+    room_space_words: Vec<String>,
+}
+
+/// Errors loading the grounding rules.
+#[derive(Debug, thiserror::Error)]
+pub enum GroundError {
+    /// The data file does not parse.
+    #[error("lexicon/grounding.json does not parse")]
+    Parse(#[source] serde_json::Error),
+    /// An anchor names no WordNet synset.
+    #[error("lexicon/grounding.json names {0:?}, which is no WordNet noun synset")]
+    UnknownSynset(String),
+}
+
+/// The grounding rules with their anchor synsets resolved.
+#[derive(Debug, Default)]
+pub struct Rules {
+    object_under: Vec<SynsetId>,
+    not_object_under: Vec<SynsetId>,
+    room_under: Vec<SynsetId>,
+    family_stop: HashSet<SynsetId>,
+    count_smoothing: f64,
+    /// Object share from which a noun is an object wherever it heads a phrase.
+    pub min_share: f64,
+    /// Object share from which a counted or listed noun is an object.
+    pub min_share_with_evidence: f64,
+    room_space_words: Vec<String>,
+}
+
+impl Rules {
+    /// Parses the rules and resolves their synset names.
+    pub fn parse(text: &str) -> Result<Rules, GroundError> {
+        let f: RulesFile = serde_json::from_str(text).map_err(GroundError::Parse)?;
+        let wn = wordnet();
+        let resolve = |names: &[String]| -> Result<Vec<SynsetId>, GroundError> {
+            names
+                .iter()
+                .map(|n| {
+                    wn.synset(n)
+                        .ok_or_else(|| GroundError::UnknownSynset(n.clone()))
+                })
+                .collect()
+        };
+        Ok(Rules {
+            object_under: resolve(&f.object_under)?,
+            not_object_under: resolve(&f.not_object_under)?,
+            room_under: resolve(&f.room_under)?,
+            family_stop: resolve(&f.family_stop)?.into_iter().collect(),
+            count_smoothing: f.count_smoothing,
+            min_share: f.min_share,
+            min_share_with_evidence: f.min_share_with_evidence,
+            room_space_words: f.room_space_words,
+        })
+    }
+
+    /// True for a word that names the space of a room after its type word ("floor" in
+    /// "salon floor").
+    pub fn is_room_space_word(&self, word: &str) -> bool {
+        self.room_space_words.iter().any(|w| w == word)
+    }
+
+    fn under_any(&self, s: SynsetId, anchors: &[SynsetId]) -> bool {
+        let wn = wordnet();
+        anchors.iter().any(|&a| wn.is_a(s, a))
+    }
+
+    /// A sense that names a placeable physical thing.
+    pub fn placeable(&self, s: SynsetId) -> bool {
+        self.under_any(s, &self.object_under) && !self.under_any(s, &self.not_object_under)
+    }
+
+    /// A sense that names a room, a building or a place of business.
+    pub fn roomlike(&self, s: SynsetId) -> bool {
+        self.under_any(s, &self.room_under)
+    }
+}
+
+/// The compiled-in rules. A broken data file yields empty rules (no noun grounds); the unit
+/// test `compiled_rules_parse` catches that before it ships.
+pub fn rules() -> &'static Rules {
+    static RULES: OnceLock<Rules> = OnceLock::new();
+    RULES.get_or_init(
+        || match Rules::parse(include_str!("../data/lexicon/grounding.json")) {
+            Ok(r) => r,
+            Err(e) => {
+                tracing::error!("{e}");
+                Rules::default()
+            }
+        },
+    )
+}
+
+/// What WordNet says about a noun.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NounInfo {
+    /// The WordNet lemma (base form, words separated by spaces).
+    pub lemma: String,
+    /// Weight of the placeable senses over all senses, 0..=1.
+    pub share: f64,
+    /// Placeable senses, heaviest first.
+    pub placeable: Vec<SynsetId>,
+    /// Whether a sense names a room or building.
+    pub roomlike: bool,
+    /// Lexicographer file of the heaviest sense ("noun.feeling").
+    pub lexname: String,
+}
+
+/// The WordNet noun lemma of a word or multiword phrase ("shelves" -> "shelf"), if it is a
+/// noun at all.
+pub fn noun_lemma(words: &str) -> Option<String> {
+    let wn = wordnet();
+    let w = words.trim().to_lowercase();
+    if w.is_empty() {
+        return None;
+    }
+    if wn.is_lemma(&w, Pos::Noun) {
+        return Some(w);
+    }
+    wn.base_forms(&w, Pos::Noun).into_iter().next()
+}
+
+/// What WordNet says about the noun `words` (any inflection), if it is a noun.
+pub fn noun_info(words: &str) -> Option<NounInfo> {
+    let wn = wordnet();
+    let r = rules();
+    let lemma = noun_lemma(words)?;
+    let senses = wn.noun_senses(&lemma);
+    if senses.is_empty() {
+        return None;
+    }
+    let mut total = 0.0;
+    let mut placed = 0.0;
+    let mut placeable: Vec<(f64, usize, SynsetId)> = Vec::new();
+    let mut roomlike = false;
+    let mut heaviest: Option<(f64, SynsetId)> = None;
+    for (rank, s) in senses.iter().enumerate() {
+        let w = f64::from(s.count) + r.count_smoothing;
+        total += w;
+        if r.placeable(s.synset) {
+            placed += w;
+            placeable.push((w, rank, s.synset));
+        }
+        roomlike |= r.roomlike(s.synset);
+        if heaviest.is_none_or(|(hw, _)| w > hw) {
+            heaviest = Some((w, s.synset));
+        }
+    }
+    placeable.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    Some(NounInfo {
+        lemma,
+        share: if total > 0.0 { placed / total } else { 0.0 },
+        placeable: placeable.into_iter().map(|(_, _, s)| s).collect(),
+        roomlike,
+        lexname: heaviest.map_or_else(String::new, |(_, s)| wn.lexname(s).to_string()),
+    })
+}
+
+/// True when WordNet knows `word` as a noun (any inflection).
+pub fn is_noun(word: &str) -> bool {
+    wordnet().has_pos(word, Pos::Noun)
+}
+
+/// The part of speech a word has when it is not a noun ("stylish": adjective, "creating":
+/// verb, "dimly": adverb); `None` for nouns and for words WordNet does not know.
+pub fn only_other_pos(word: &str) -> Option<&'static str> {
+    let wn = wordnet();
+    if wn.has_pos(word, Pos::Noun) {
+        return None;
+    }
+    [
+        (Pos::Adj, "adjective"),
+        (Pos::Verb, "verb"),
+        (Pos::Adv, "adverb"),
+    ]
+    .into_iter()
+    .find(|(p, _)| wn.has_pos(word, *p))
+    .map(|(_, name)| name)
+}
+
+/// True when WordNet knows `word` in any part of speech.
+pub fn is_word(word: &str) -> bool {
+    let wn = wordnet();
+    [Pos::Noun, Pos::Verb, Pos::Adj, Pos::Adv]
+        .into_iter()
+        .any(|p| wn.has_pos(word, p))
+}
+
+/// The verdict on a noun heading a phrase.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Verdict {
+    /// A placeable thing.
+    Object,
+    /// A placeable thing only when the phrase counts or lists it.
+    NeedsEvidence,
+    /// Not a placeable thing; the reason names what it is ("feeling", "state").
+    NotObject(String),
+}
+
+/// Whether the noun `words` names a placeable thing.
+pub fn verdict(words: &str) -> Verdict {
+    let r = rules();
+    match noun_info(words) {
+        None => match only_other_pos(words.rsplit(' ').next().unwrap_or(words)) {
+            Some(pos) => {
+                Verdict::NotObject(format!("an {pos}, not a noun").replace("an verb", "a verb"))
+            }
+            None => Verdict::NotObject("a word the dictionary does not know".to_string()),
+        },
+        Some(info) if info.share >= r.min_share => Verdict::Object,
+        Some(info) if info.share >= r.min_share_with_evidence => Verdict::NeedsEvidence,
+        Some(info) if info.placeable.is_empty() => Verdict::NotObject(format!(
+            "a {} word, no physical thing",
+            info.lexname.trim_start_matches("noun.")
+        )),
+        Some(info) => Verdict::NotObject(format!(
+            "mostly a {} word ({:.0} % of its uses name a thing)",
+            info.lexname.trim_start_matches("noun."),
+            100.0 * info.share
+        )),
+    }
+}
+
+/// The nearest family of a noun along its hypernyms.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Family {
+    /// The family noun, as the `known` predicate accepted it.
+    pub noun: String,
+    /// Hypernym steps from the noun's sense to the family (0: a synonym).
+    pub distance: u32,
+    /// Lemmas along the way, from the noun's sense to the family's synset.
+    pub via: Vec<String>,
+}
+
+/// The nearest noun `known` accepts along the hypernyms of `lemma`'s senses that pass
+/// `sense_ok` (heaviest sense first on ties), never above the `family_stop` synsets.
+fn nearest(lemma: &str, senses: &[SynsetId], known: &dyn Fn(&str) -> bool) -> Option<Family> {
+    let wn = wordnet();
+    let r = rules();
+    let mut best: Option<(u32, usize, Family)> = None;
+    for (rank, &start) in senses.iter().enumerate() {
+        // Breadth first, remembering the path for the report.
+        let mut queue: VecDeque<(SynsetId, u32, Vec<String>)> = VecDeque::new();
+        let mut seen: HashSet<SynsetId> = HashSet::new();
+        queue.push_back((start, 0, Vec::new()));
+        while let Some((s, d, path)) = queue.pop_front() {
+            if !seen.insert(s) || r.family_stop.contains(&s) {
+                continue;
+            }
+            if best.as_ref().is_some_and(|(bd, _, _)| d > *bd) {
+                break;
+            }
+            let mut via = path.clone();
+            via.push(wn.lemmas(s).next().unwrap_or_default().replace('_', " "));
+            if let Some(found) = wn
+                .lemmas(s)
+                .map(|l| l.replace('_', " "))
+                .find(|l| l != lemma && known(l))
+            {
+                let better = best
+                    .as_ref()
+                    .is_none_or(|(bd, br, _)| (d, rank) < (*bd, *br));
+                if better {
+                    best = Some((
+                        d,
+                        rank,
+                        Family {
+                            noun: found,
+                            distance: d,
+                            via: via.clone(),
+                        },
+                    ));
+                }
+                continue;
+            }
+            for &h in wn.hypernyms(s) {
+                queue.push_back((h, d + 1, via.clone()));
+            }
+        }
+    }
+    best.map(|(_, _, f)| f)
+}
+
+/// The nearest family `known` accepts along the hypernyms of the placeable senses of
+/// `words` ("samovar" -> "urn" when the library builds urns).
+pub fn family(words: &str, known: &dyn Fn(&str) -> bool) -> Option<Family> {
+    let info = noun_info(words)?;
+    nearest(&info.lemma, &info.placeable, known)
+}
+
+/// The nearest room word `known` accepts along the hypernyms of the room-like senses of
+/// `words` ("bakehouse" -> "bakery", "pantry" -> "storeroom").
+pub fn room_family(words: &str, known: &dyn Fn(&str) -> bool) -> Option<Family> {
+    let info = noun_info(words)?;
+    let wn = wordnet();
+    let r = rules();
+    let senses: Vec<SynsetId> = wn
+        .noun_senses(&info.lemma)
+        .iter()
+        .map(|s| s.synset)
+        .filter(|&s| r.roomlike(s))
+        .collect();
+    nearest(&info.lemma, &senses, known)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn compiled_rules_parse() {
+        let r = Rules::parse(include_str!("../data/lexicon/grounding.json")).unwrap();
+        assert!(!r.object_under.is_empty() && !r.family_stop.is_empty());
+        assert!(r.min_share > r.min_share_with_evidence);
+    }
+
+    #[test]
+    fn abstract_words_are_no_objects() {
+        for w in [
+            "unease",
+            "scream",
+            "tension",
+            "juxtaposition",
+            "chaos",
+            "atmosphere",
+            "taste",
+            "despite",
+            "elegance",
+            "calm",
+            "warmth",
+            "design",
+            "storage",
+            "touch",
+        ] {
+            assert!(
+                matches!(verdict(w), Verdict::NotObject(_)),
+                "{w}: {:?} {:?}",
+                verdict(w),
+                noun_info(w)
+            );
+        }
+        for w in ["stylish", "practical", "somber", "providing", "dimly"] {
+            assert!(only_other_pos(w).is_some(), "{w}");
+            assert!(matches!(verdict(w), Verdict::NotObject(_)), "{w}");
+        }
+    }
+
+    #[test]
+    fn things_are_objects() {
+        for w in [
+            "chandelier",
+            "samovar",
+            "gramophone",
+            "typewriter",
+            "fern",
+            "apple",
+            "dartboard",
+            "printers",
+            "shelves",
+            "vases",
+        ] {
+            assert_eq!(verdict(w), Verdict::Object, "{w}: {:?}", noun_info(w));
+        }
+    }
+
+    #[test]
+    fn families_along_the_hypernyms() {
+        let known = |n: &str| ["lighting fixture", "printer", "bucket", "machine"].contains(&n);
+        let f = family("chandelier", &known).unwrap();
+        assert_eq!(f.noun, "lighting fixture");
+        assert_eq!(f.distance, 1);
+        let f = family("wine cooler", &known).unwrap();
+        assert_eq!(f.noun, "bucket");
+        // A synonym is a family at distance 0.
+        let f = family("printing machine", &known).unwrap();
+        assert_eq!((f.noun.as_str(), f.distance), ("printer", 0));
+        assert!(family("unease", &known).is_none());
+        // Never above the stop synsets: nothing is a kind of "artifact" here.
+        assert!(family("chandelier", &|n: &str| n == "artifact").is_none());
+    }
+
+    #[test]
+    fn rooms_along_the_hypernyms() {
+        let known = |n: &str| ["bakery", "storeroom", "shop"].contains(&n);
+        assert_eq!(room_family("bakehouse", &known).unwrap().noun, "bakery");
+        assert_eq!(room_family("pantry", &known).unwrap().noun, "storeroom");
+        assert_eq!(room_family("pharmacy", &known).unwrap().noun, "shop");
+        assert!(room_family("chair", &known).is_none());
+        assert!(rules().is_room_space_word("floor"));
+    }
+}
