@@ -134,11 +134,24 @@ enum Command {
         #[arg(long, default_value_t = 0)]
         seed: u64,
     },
-    /// Compute a scene's metrics (counts, COL, STB, MD/XD/MR, NAV, OOB, prompt coverage),
+    /// Compute a scene's metrics (counts, COL, STB, MD/XD/MR, NAV, OOB, plan coverage),
     /// write DIR/metrics.json and print a table.
+    ///
+    /// With --requirements FILE, score the scene against requirements written independently of
+    /// the prompt reader instead (from DIR/scene.json alone; no assets, no Drake), write
+    /// DIR/requirements_report.json and print a table. Exit 2 for a bad FILE.
     Eval {
         /// Scene directory.
         dir: PathBuf,
+        /// JSON Lines of requirements: {"object": LABEL, "count": OP[, "room": LABEL]},
+        /// {"absent": LABEL[, "room": LABEL]} or {"room": LABEL, "count": OP}; OP is =N, >=N,
+        /// <=N, >N, <N or several.
+        #[arg(
+            long,
+            value_name = "FILE",
+            conflicts_with_all = ["robot_radius", "no_stb", "contact", "full_stb"]
+        )]
+        requirements: Option<PathBuf>,
         /// Robot radius for NAV, metres.
         #[arg(long, default_value_t = 0.25)]
         robot_radius: f64,
@@ -262,9 +275,9 @@ fn run_generate(cli_json: bool, opts: GenerateOptions) -> anyhow::Result<ExitCod
             .map(|(c, n)| format!("{n} {c}"))
             .collect();
         eprintln!("  objects: {}", cats.join(", "));
-        for (noun, wanted, present) in &summary.coverage {
-            if present < wanted {
-                eprintln!("  note: asked for {wanted} {noun}, placed {present}");
+        for (noun, planned, present) in &summary.plan_coverage {
+            if present < planned {
+                eprintln!("  note: the plan has {planned} {noun}, placed {present}");
             }
         }
         for noun in &summary.unknown_nouns {
@@ -429,6 +442,38 @@ fn run_eval(
     } else {
         eprintln!("metrics of {} (written to metrics.json)", dir.display());
         eprint!("{}", eval::table(&metrics));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn run_requirements(cli_json: bool, dir: PathBuf, file: PathBuf) -> anyhow::Result<ExitCode> {
+    use scenesmith::eval::requirements::{
+        REQUIREMENTS_REPORT_JSON, parse_requirements, score, table, write_report,
+    };
+    let reqs = match std::fs::read_to_string(&file)
+        .map_err(|e| e.to_string())
+        .and_then(|text| parse_requirements(&text).map_err(|e| e.to_string()))
+    {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("error: requirements file {}: {e}", file.display());
+            return Ok(ExitCode::from(2));
+        }
+    };
+    let scene = scenesmith::formats::scene_dir::read_scene(&dir)
+        .with_context(|| format!("reading the scene in {}", dir.display()))?;
+    let report = score(&scene, &reqs);
+    write_report(&dir, &report)
+        .with_context(|| format!("writing {REQUIREMENTS_REPORT_JSON} in {}", dir.display()))?;
+    if cli_json {
+        print_json(&serde_json::to_value(&report)?)?;
+    } else {
+        eprintln!(
+            "requirements of {} from {} (written to {REQUIREMENTS_REPORT_JSON})",
+            dir.display(),
+            file.display()
+        );
+        eprint!("{}", table(&report));
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -794,6 +839,12 @@ fn main() -> ExitCode {
         } => run_gallery(cli.json, out, only, columns, seed),
         Command::Eval {
             dir,
+            requirements: Some(file),
+            ..
+        } => run_requirements(cli.json, dir, file),
+        Command::Eval {
+            dir,
+            requirements: None,
             robot_radius,
             no_stb,
             contact,

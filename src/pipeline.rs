@@ -177,8 +177,9 @@ pub struct GenerateSummary {
     pub objects_per_category: BTreeMap<String, usize>,
     /// Scores kept by every stage run.
     pub stages: Vec<StageSummary>,
-    /// Explicitly requested objects: (noun, wanted, present).
-    pub coverage: Vec<(String, u32, u32)>,
+    /// The objects the room plans request explicitly (the reader's plan, not the prompt):
+    /// (noun, planned, present).
+    pub plan_coverage: Vec<(String, u32, u32)>,
     /// Nouns of the prompt no generator knows.
     pub unknown_nouns: Vec<String>,
     /// Penetrating pairs found by the in-process (parry3d) check.
@@ -274,8 +275,9 @@ pub struct BuildReport {
     pub log: RunLog,
     /// Scores kept by every stage run.
     pub stages: Vec<StageSummary>,
-    /// Explicitly requested objects: (noun, wanted, present).
-    pub coverage: Vec<(String, u32, u32)>,
+    /// The objects the room plans request explicitly (the reader's plan, not the prompt):
+    /// (noun, planned, present).
+    pub plan_coverage: Vec<(String, u32, u32)>,
     /// Nouns of the prompt no generator knows.
     pub unknown_nouns: Vec<String>,
 }
@@ -354,7 +356,7 @@ pub fn build_scene_with(
         state = next;
         report.stages.extend(stages);
     }
-    report.coverage = requested
+    report.plan_coverage = requested
         .into_iter()
         .map(|(noun, wanted)| {
             let present = state
@@ -567,7 +569,7 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
         objects_per_kind: per_kind,
         objects_per_category: per_cat,
         stages: report.stages,
-        coverage: report.coverage,
+        plan_coverage: report.plan_coverage,
         unknown_nouns: report.unknown_nouns,
         rust_penetrating_pairs: rust_pairs.len(),
         check,

@@ -70,6 +70,7 @@ fn hostile_names_give_valid_escaped_contained_files() {
     state.scene.objects.push(SceneObject {
         id: "weird \"obj\" ../tür".into(),
         category: "drawer \"box\" ../".into(),
+        name: None,
         kind: ObjectKind::Furniture,
         room,
         asset: asset_id,

@@ -39,6 +39,7 @@ fn scene_with(pairs: &[(Pose, Pose, bool)]) -> SceneState {
     scene.rooms.push(Room {
         id: "room_0".into(),
         room_type: "room".into(),
+        label: None,
         prompt: String::new(),
         floor_polygon: vec![[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]],
         wall_height: 2.5,

@@ -111,7 +111,7 @@ fn nav_sees_a_room_cut_in_two_and_oob_sees_an_object_through_the_wall() {
 }
 
 #[test]
-fn stb_flags_the_object_that_falls_and_prompt_coverage_counts() {
+fn stb_flags_the_object_that_falls_and_plan_coverage_counts() {
     let mut state = room(3.0, 3.0);
     state.scene.provenance.prompt = "A room with two blocks and a table, but no chair.".into();
     let cube = block("cube", Shape::Box([0.1, 0.1, 0.1]), "wood");
@@ -153,7 +153,7 @@ fn stb_flags_the_object_that_falls_and_prompt_coverage_counts() {
 
     // "two blocks" is not a category the reader knows; "a table" and "no chair" are.
     let req: Vec<(&str, &str, u32, bool)> = m
-        .prompt
+        .plan_coverage
         .requirements
         .iter()
         .map(|r| (r.category.as_str(), r.kind.as_str(), r.present, r.satisfied))
@@ -194,7 +194,7 @@ fn eval_writes_metrics_and_generate_writes_them_too() {
     let e = scenesmith(&["eval", out.to_str().unwrap(), "--no-stb"], &[]);
     assert!(e.status.success(), "{}", text(&e));
     let table = String::from_utf8_lossy(&e.stderr);
-    for row in ["COL", "STB", "NAV", "OOB", "prompt"] {
+    for row in ["COL", "STB", "NAV", "OOB", "plan"] {
         assert!(table.contains(row), "{table}");
     }
     let again: serde_json::Value =

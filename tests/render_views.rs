@@ -59,6 +59,7 @@ fn test_state() -> SceneState {
     let room = Room {
         id: "room_0".into(),
         room_type: "study".into(),
+        label: None,
         prompt: String::new(),
         floor_polygon: vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]],
         wall_height: 2.6,
@@ -74,6 +75,7 @@ fn test_state() -> SceneState {
     state.scene.objects.push(SceneObject {
         id: "room_0_architecture".into(),
         category: "room_architecture".into(),
+        name: None,
         kind: ObjectKind::Architecture,
         room: "room_0".into(),
         asset: arch_id,
@@ -288,6 +290,7 @@ fn two_room_state() -> SceneState {
     let room = Room {
         id: "room_1".into(),
         room_type: "hall".into(),
+        label: None,
         prompt: String::new(),
         floor_polygon: vec![[4.24, 0.0], [7.24, 0.0], [7.24, 3.0], [4.24, 3.0]],
         wall_height: 2.6,
@@ -301,6 +304,7 @@ fn two_room_state() -> SceneState {
     state.scene.objects.push(SceneObject {
         id: "room_1_architecture".into(),
         category: "room_architecture".into(),
+        name: None,
         kind: ObjectKind::Architecture,
         room: "room_1".into(),
         asset: arch_id,

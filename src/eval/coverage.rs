@@ -1,6 +1,9 @@
-//! Prompt coverage: which objects (and how many) the prompt asks for, and whether the scene has
-//! them. Requirements come from the prompt reader ([`crate::prompt::read`]); this module only
-//! compares them with the scene's object categories.
+//! Plan coverage: which objects (and how many) the prompt reader planned, and whether the scene
+//! has them. The requirements come from the reader ([`crate::prompt::read`]), so this measures
+//! how well the scene follows the reader's plan, not the prompt itself: an object the reader
+//! missed is missing from both sides. This module only compares the plan with the scene's
+//! object categories; [`super::requirements`] scores a scene against requirements written
+//! independently of the reader.
 
 use std::collections::BTreeMap;
 
@@ -10,14 +13,14 @@ use crate::prompt::{Count, Reading};
 use crate::scene::{ObjectKind, Scene};
 use crate::stages::StageState;
 
-/// One requirement of the prompt and how the scene meets it.
+/// One requirement of the reader's plan and how the scene meets it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Requirement {
+pub struct PlannedRequirement {
     /// Asset category.
     pub category: String,
     /// `exactly`, `at_least`, `several` or `none` (negated: "no TV").
     pub kind: String,
-    /// Number asked for (0 for `none`).
+    /// Number planned (0 for `none`).
     pub required: u32,
     /// Objects of the category in the scene.
     pub present: u32,
@@ -25,23 +28,23 @@ pub struct Requirement {
     pub satisfied: bool,
 }
 
-/// Coverage of a prompt by a scene.
+/// Coverage of the reader's plan by a scene.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Coverage {
+pub struct PlanCoverage {
     /// Per category, in category order.
-    pub requirements: Vec<Requirement>,
+    pub requirements: Vec<PlannedRequirement>,
     /// Requirements met.
     pub satisfied: usize,
-    /// Percent of requirements met (100 when the prompt names nothing).
+    /// Percent of requirements met (100 when the plan names nothing).
     pub percent: f64,
-    /// Percent of the asked-for object count present: sum(min(present, required)) /
+    /// Percent of the planned object count present: sum(min(present, required)) /
     /// sum(required) over positive requirements.
     pub count_percent: f64,
 }
 
-/// Compares `reading` with the objects of `scene`. Several mentions of one category merge
-/// into the largest count; a category both asked for and negated counts as asked for.
-pub fn coverage(reading: &Reading, scene: &Scene) -> Coverage {
+/// Compares the reader's `reading` with the objects of `scene`. Several mentions of one category
+/// merge into the largest count; a category both planned and negated counts as planned.
+pub fn plan_coverage(reading: &Reading, scene: &Scene) -> PlanCoverage {
     // The reader's nouns ("board game", "sink") name the library's categories ("board_game",
     // "sink_vanity") through the asset router's reading, as when the scene was built.
     // What the router builds for a mention's description counts too: "wooden play blocks"
@@ -98,7 +101,7 @@ pub fn coverage(reading: &Reading, scene: &Scene) -> Coverage {
             Count::AtLeast(n) => ("at_least", *n, have >= *n),
             Count::Several => ("several", count.minimum(), have >= count.minimum()),
         };
-        requirements.push(Requirement {
+        requirements.push(PlannedRequirement {
             category: cat.clone(),
             kind: kind.into(),
             required,
@@ -110,7 +113,7 @@ pub fn coverage(reading: &Reading, scene: &Scene) -> Coverage {
     negated.dedup();
     for cat in negated.into_iter().filter(|c| !asked.contains_key(c)) {
         let have = present_of(cat.as_str());
-        requirements.push(Requirement {
+        requirements.push(PlannedRequirement {
             category: cat,
             kind: "none".into(),
             required: 0,
@@ -134,7 +137,7 @@ pub fn coverage(reading: &Reading, scene: &Scene) -> Coverage {
                     w + u64::from(r.required),
                 )
             });
-    Coverage {
+    PlanCoverage {
         requirements,
         satisfied,
         percent,
@@ -166,6 +169,7 @@ mod tests {
             s.objects.push(SceneObject {
                 id: format!("{c}_{i}"),
                 category: c.to_string(),
+                name: None,
                 kind: ObjectKind::Furniture,
                 room: "r".into(),
                 asset: "a".into(),
@@ -186,7 +190,7 @@ mod tests {
         let scene = scene_with(&[
             "chair", "chair", "chair", "mug", "mug", "mug", "mug", "book",
         ]);
-        let c = coverage(&reading, &scene);
+        let c = plan_coverage(&reading, &scene);
         let by: BTreeMap<_, _> = c
             .requirements
             .iter()
@@ -219,12 +223,12 @@ mod house_tests {
         );
         let reading = crate::prompt::read("An office with two desks, each with a chair.");
         let scene = Scene::new("p", 0, "t");
-        let c = coverage(&reading, &scene);
+        let c = plan_coverage(&reading, &scene);
         let chair = c
             .requirements
             .iter()
             .find(|r| r.category == "chair")
-            .expect("chairs are asked for");
+            .expect("chairs are planned");
         assert_eq!(chair.required, 2, "{:?}", c.requirements);
     }
 }

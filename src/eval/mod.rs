@@ -1,4 +1,5 @@
-//! Scene metrics (`metrics.json`, `scenesmith eval DIR`).
+//! Scene metrics (`metrics.json`, `scenesmith eval DIR`) and the requirements score
+//! (`requirements_report.json`, `scenesmith eval DIR --requirements FILE`, see [`requirements`]).
 //!
 //! | metric | meaning |
 //! |---|---|
@@ -8,13 +9,14 @@
 //! | MD, XD, MR | mean displacement (mm), max displacement (m), mean rotation (rad) of the free objects in that simulation |
 //! | NAV | largest connected free floor region / all free floor, for a round robot (radius configurable) |
 //! | OOB | percent of objects with geometry outside their room's floor polygon |
-//! | prompt | requirements of the prompt reader (objects, counts, negations) met by the scene |
+//! | plan | plan coverage: the requirements the prompt reader planned (objects, counts, negations) met by the scene; it measures the reader's plan, not the prompt (see [`requirements`] for a score against requirements written independently) |
 //!
 //! Everything but STB is computed in-process; STB needs the Drake bridge and is `null` without
 //! it. `metrics.json` holds no timings or host data, so the same scene gives the same bytes.
 
 pub mod coverage;
 pub mod floor;
+pub mod requirements;
 pub mod stability;
 
 use std::collections::BTreeMap;
@@ -34,7 +36,7 @@ use crate::scene::ObjectKind;
 use crate::stages::SceneState;
 use crate::util::fsx::write_atomic;
 
-pub use coverage::{Coverage, Requirement};
+pub use coverage::{PlanCoverage, PlannedRequirement};
 pub use floor::{Nav, NavRoom, Oob};
 pub use stability::stability;
 
@@ -216,8 +218,10 @@ pub struct Metrics {
     pub nav: Nav,
     /// Out of bounds.
     pub oob: Oob,
-    /// Prompt coverage.
-    pub prompt: Coverage,
+    /// Plan coverage: the prompt reader's planned requirements met by the scene (read from
+    /// older files under its former name `prompt`).
+    #[serde(alias = "prompt")]
+    pub plan_coverage: PlanCoverage,
 }
 
 fn counts(state: &SceneState) -> Counts {
@@ -309,7 +313,7 @@ pub fn evaluate(
             opts.robot_height_m,
         ),
         oob: floor::oob(&state.scene, &posed, opts.oob_tolerance_m),
-        prompt: coverage::coverage(&reading, &state.scene),
+        plan_coverage: coverage::plan_coverage(&reading, &state.scene),
     })
 }
 
@@ -409,12 +413,12 @@ pub fn table(m: &Metrics) -> String {
         format!("{:.2} % of {} objects", m.oob.percent, m.oob.objects),
     ));
     rows.push((
-        "prompt".into(),
+        "plan".into(),
         format!(
-            "{:.0} % of {} requirements met, {:.0} % of the asked-for objects present",
-            m.prompt.percent,
-            m.prompt.requirements.len(),
-            m.prompt.count_percent
+            "{:.0} % of the reader's {} planned requirements met, {:.0} % of the planned objects present",
+            m.plan_coverage.percent,
+            m.plan_coverage.requirements.len(),
+            m.plan_coverage.count_percent
         ),
     ));
     let w = rows.iter().map(|(k, _)| k.len()).max().unwrap_or(0);
@@ -423,4 +427,32 @@ pub fn table(m: &Metrics) -> String {
         let _ = writeln!(out, "  {k:<w$}  {v}");
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The plan coverage was called `prompt` until it was renamed to say what it measures;
+    /// `metrics.json` files written before still load.
+    #[test]
+    fn metrics_written_under_the_old_name_still_load() {
+        let scene = crate::scene::Scene::new("A room with a table and no chair.", 0, "t");
+        let state = SceneState::new(scene);
+        let opts = EvalOptions {
+            stability: None,
+            ..EvalOptions::default()
+        };
+        let m = evaluate(&state, None, &opts).expect("an empty scene evaluates");
+        assert!(!m.plan_coverage.requirements.is_empty());
+        let mut v = serde_json::to_value(&m).expect("metrics serialise");
+        let fields = v.as_object_mut().expect("an object");
+        let coverage = fields
+            .remove("plan_coverage")
+            .expect("the new name is written");
+        fields.insert("prompt".into(), coverage);
+        let old: Metrics = serde_json::from_value(v).expect("the old name loads");
+        assert_eq!(old, m);
+        assert!(table(&m).contains("of the reader's"), "{}", table(&m));
+    }
 }

@@ -167,6 +167,7 @@ mod tests {
         s.rooms.push(Room {
             id: "room_0".into(),
             room_type: "room".into(),
+            label: None,
             prompt: String::new(),
             floor_polygon: vec![[0.0, 0.0], [3.0, 0.0], [3.0, 3.0], [0.0, 3.0]],
             wall_height: 2.5,
@@ -197,6 +198,7 @@ mod tests {
             s.objects.push(SceneObject {
                 id: id.into(),
                 category: id.into(),
+                name: None,
                 kind,
                 room: "room_0".into(),
                 asset: asset.into(),

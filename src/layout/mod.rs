@@ -124,6 +124,7 @@ pub fn single_room(
     Room {
         id: room_id.to_string(),
         room_type: reading.room_type.clone(),
+        label: None,
         prompt: prompt_text.to_string(),
         floor_polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]],
         wall_height: info.wall_height,

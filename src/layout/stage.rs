@@ -152,6 +152,7 @@ pub fn install_rooms(state: &mut SceneState, rooms: &[Room]) -> Result<(), Geome
         state.scene.objects.push(SceneObject {
             id: arch_id,
             category: "room_architecture".into(),
+            name: None,
             kind: ObjectKind::Architecture,
             room: room.id.clone(),
             asset: asset_id,

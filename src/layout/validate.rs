@@ -211,6 +211,7 @@ mod tests {
         Room {
             id: id.into(),
             room_type: "room".into(),
+            label: None,
             prompt: String::new(),
             floor_polygon: vec![],
             wall_height: 2.7,

@@ -412,6 +412,7 @@ mod tests {
         Room {
             id: "room_0".into(),
             room_type: "room".into(),
+            label: None,
             prompt: String::new(),
             floor_polygon: vec![[0.0, 0.0], [3.0, 0.0], [3.0, 2.0], [0.0, 2.0]],
             wall_height: 2.5,
@@ -432,6 +433,7 @@ mod tests {
         state.scene.objects.push(SceneObject {
             id: "room_0_architecture".into(),
             category: "room_architecture".into(),
+            name: None,
             kind: ObjectKind::Architecture,
             room: "room_0".into(),
             asset: id,

@@ -82,6 +82,10 @@ pub struct Room {
     pub id: String,
     /// Room type noun, e.g. `kitchen`.
     pub room_type: String,
+    /// The prompt's own name for the room ("exam room", "master bedroom"), when known. Older
+    /// scene files have none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub label: Option<String>,
     /// The part of the prompt that concerns this room.
     pub prompt: String,
     /// Clear interior floor (inside faces of the walls), world XY, counter-clockwise, metres.
@@ -252,6 +256,10 @@ pub struct SceneObject {
     pub id: String,
     /// Plain noun, e.g. `nightstand`.
     pub category: String,
+    /// The prompt's own noun for the object ("couch" where the category is `sofa`), when
+    /// known. Older scene files have none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
     /// Role of the object.
     pub kind: ObjectKind,
     /// Id of the room the object is in.
@@ -455,6 +463,7 @@ mod tests {
         s.rooms.push(Room {
             id: "room_0".into(),
             room_type: "room".into(),
+            label: None,
             prompt: "a room".into(),
             floor_polygon: vec![[0.0, 0.0], [3.0, 0.0], [3.0, 3.0], [0.0, 3.0]],
             wall_height: 2.5,
@@ -482,6 +491,7 @@ mod tests {
         s.objects.push(SceneObject {
             id: "box_0".into(),
             category: "box".into(),
+            name: None,
             kind: ObjectKind::Manipuland,
             room: "room_0".into(),
             asset: "box_1".into(),

@@ -76,6 +76,7 @@ impl SceneState {
         self.scene.objects.push(SceneObject {
             id: id.clone(),
             category: category.to_string(),
+            name: None,
             kind,
             room: room.to_string(),
             asset: asset_id.to_string(),

@@ -340,6 +340,7 @@ mod tests {
         Room {
             id: "r".into(),
             room_type: "room".into(),
+            label: None,
             prompt: String::new(),
             floor_polygon: vec![[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]],
             wall_height: 2.5,

@@ -101,6 +101,7 @@ pub fn articulated_state() -> SceneState {
     state.scene.objects.push(SceneObject {
         id: "drawer_box_0".into(),
         category: "drawer box".into(),
+        name: None,
         kind: ObjectKind::Furniture,
         room,
         asset: asset_id,

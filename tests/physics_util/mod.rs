@@ -83,6 +83,7 @@ pub fn room(w: f64, d: f64) -> SceneState {
     let room = Room {
         id: "room_0".into(),
         room_type: "room".into(),
+        label: None,
         prompt: String::new(),
         floor_polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]],
         wall_height: 2.5,
@@ -98,6 +99,7 @@ pub fn room(w: f64, d: f64) -> SceneState {
     state.scene.objects.push(SceneObject {
         id: "room_0_architecture".into(),
         category: "room_architecture".into(),
+        name: None,
         kind: ObjectKind::Architecture,
         room: "room_0".into(),
         asset,
