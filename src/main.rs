@@ -49,6 +49,10 @@ enum Command {
         /// Continue a failed run of the same command after its last finished stage.
         #[arg(long)]
         resume: bool,
+        /// Build a default room when the built-in reader understands no room and no object
+        /// of the prompt (another language, gibberish) instead of exiting with status 2.
+        #[arg(long)]
+        lenient: bool,
         #[command(flatten)]
         llm: LlmArgs,
         /// Exports to write into DIR/export: a comma-separated list of mjcf, usd, glb, or
@@ -254,7 +258,11 @@ fn run_generate(cli_json: bool, opts: GenerateOptions) -> anyhow::Result<ExitCod
     );
     let summary = match pipeline::generate(&opts) {
         Ok(s) => s,
-        Err(e @ (PipelineError::EmptyPrompt | PipelineError::UnusablePrompt(_))) => {
+        Err(
+            e @ (PipelineError::EmptyPrompt
+            | PipelineError::UnusablePrompt(_)
+            | PipelineError::NotUnderstood(_)),
+        ) => {
             eprintln!("error: {e}");
             return Ok(ExitCode::from(2));
         }
@@ -787,6 +795,7 @@ fn main() -> ExitCode {
             no_check,
             no_render,
             resume,
+            lenient,
             llm,
             export,
         } => match scenesmith::export::ExportSet::parse(&export) {
@@ -802,6 +811,7 @@ fn main() -> ExitCode {
                         exports,
                         backend,
                         resume,
+                        lenient,
                     },
                 )
             }),

@@ -46,6 +46,13 @@ pub enum PipelineError {
     /// A prompt that cannot describe a scene.
     #[error("the prompt cannot describe a scene: {0}")]
     UnusablePrompt(String),
+    /// A prompt the built-in reader does not understand.
+    #[error(
+        "the built-in reader understood no room and no object in the prompt ({0}). It reads \
+         English; an LLM backend (--llm-base-url) reads any language. --lenient builds a \
+         default room anyway."
+    )]
+    NotUnderstood(String),
     /// Output location problem.
     #[error(transparent)]
     Fs(#[from] FsError),
@@ -126,6 +133,9 @@ pub struct GenerateOptions {
     pub backend: BackendChoice,
     /// Continue after the stages an earlier, failed run of the same request finished.
     pub resume: bool,
+    /// Build a default room for a prompt the built-in reader cannot read (another
+    /// language, gibberish) instead of refusing it.
+    pub lenient: bool,
 }
 
 impl GenerateOptions {
@@ -141,6 +151,7 @@ impl GenerateOptions {
             exports: crate::export::ExportSet::all(),
             backend: BackendChoice::Builtin,
             resume: false,
+            lenient: false,
         }
     }
 }
@@ -511,6 +522,16 @@ fn finish_run(
 /// Runs the whole pipeline and writes the scene directory.
 pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError> {
     validate_prompt(&opts.prompt)?;
+    if matches!(opts.backend, BackendChoice::Builtin) {
+        let reading = crate::prompt::read(&opts.prompt);
+        if !reading.understood() {
+            let what = reading.understanding();
+            if !opts.lenient {
+                return Err(PipelineError::NotUnderstood(what));
+            }
+            tracing::warn!("building a default room: the reader understood nothing ({what})");
+        }
+    }
     let mut timings = Timings::new();
     let t_total = Instant::now();
     // Fails before any work when the output cannot be written.

@@ -19,6 +19,7 @@ pub mod lexicon;
 pub mod mentions;
 mod phrase;
 pub mod relations;
+pub mod report;
 pub mod rooms;
 pub mod tokens;
 pub mod wordnet;
@@ -32,6 +33,7 @@ pub use attributes::Attributes;
 pub use lexicon::{Lexicon, NounEntry, Support, lexicon};
 pub use mentions::{Count, Group, GroupKind, Mention, Per};
 pub use relations::{Relation, RelationKind, Target};
+pub use report::{NounReport, NounStatus};
 pub use rooms::{Density, RoomReading, Scope};
 pub use tokens::tokenize;
 
@@ -60,9 +62,27 @@ pub struct Reading {
     /// Density of the whole prompt.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub density: Option<Density>,
+    /// Every noun read and what became of it, in prompt order, once per noun.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub nouns: Vec<NounReport>,
 }
 
 impl Reading {
+    /// True when the reader understood something: a room word or an object noun (dropped
+    /// words do not count).
+    pub fn understood(&self) -> bool {
+        !self.mentions.is_empty() || self.nouns.iter().any(|n| n.status != NounStatus::Dropped)
+    }
+
+    /// What the reader understood, for messages: the nouns it read and what became of them.
+    pub fn understanding(&self) -> String {
+        if self.nouns.is_empty() {
+            return "no noun read".to_string();
+        }
+        let lines: Vec<String> = self.nouns.iter().take(8).map(NounReport::line).collect();
+        format!("read: {}", lines.join(", "))
+    }
+
     /// Indices and mentions of one room.
     pub fn room_mentions(&self, room: usize) -> impl Iterator<Item = (usize, &Mention)> {
         self.mentions
@@ -202,7 +222,48 @@ pub fn read(prompt: &str) -> Reading {
         house_type: st.house_type,
         styles: st.styles,
         density,
+        nouns: noun_reports(&chunks),
     }
+}
+
+/// Every noun phrase head of the prompt and what the reader made of it, once per noun.
+fn noun_reports(chunks: &[Vec<chunk::Chunk>]) -> Vec<NounReport> {
+    let mut out: Vec<NounReport> = Vec::new();
+    for c in chunks.iter().flatten() {
+        let chunk::Item::Np(np) = &c.item else {
+            continue;
+        };
+        let r = match (&np.report, &np.head) {
+            (Some(r), _) => r.clone(),
+            (
+                None,
+                chunk::Head::Object {
+                    entry: Some(_),
+                    noun,
+                    canonical,
+                    ..
+                },
+            ) => NounReport {
+                noun: noun.clone(),
+                lemma: None,
+                status: NounStatus::Lexicon,
+                family: Some(canonical.clone()),
+                reason: None,
+            },
+            (None, chunk::Head::Room { key, words }) => NounReport {
+                noun: words.clone(),
+                lemma: None,
+                status: NounStatus::Room,
+                family: Some(key.clone()),
+                reason: None,
+            },
+            _ => continue,
+        };
+        if !out.iter().any(|o| o.noun == r.noun && o.status == r.status) {
+            out.push(r);
+        }
+    }
+    out
 }
 
 /// Support overrides, generic covers, merged mentions dropped, room texts.

@@ -5,8 +5,10 @@
 //! This module reads one phrase at a time; `chunk` decides where phrases start.
 
 use super::attributes::{Attributes, modifier_at};
+use super::ground::{self, Verdict};
 use super::lexicon::Lexicon;
 use super::mentions::GroupKind;
+use super::report::{NounReport, NounStatus};
 use super::tokens::Token;
 use crate::knowledge::Knowledge;
 
@@ -94,6 +96,8 @@ pub(crate) struct Np {
     pub plural: bool,
     /// The word "one" was the number ("one bin").
     pub one_word: bool,
+    /// How the head noun was grounded when the lexicon did not know it.
+    pub report: Option<NounReport>,
 }
 
 impl Np {
@@ -133,6 +137,7 @@ pub(crate) fn pronoun_np(p: Pronoun) -> Np {
         head: Head::Pronoun(p),
         plural: matches!(p, Pronoun::Them | Pronoun::EachOther),
         one_word: false,
+        report: None,
     }
 }
 
@@ -203,6 +208,7 @@ pub(crate) fn parse_np(
         head: Head::NonObject,
         plural: false,
         one_word: false,
+        report: None,
     };
     let mut j = i;
     let at = |j: usize| if j < end { word(tokens, j) } else { None };
@@ -349,7 +355,15 @@ pub(crate) fn parse_np(
     let room_len = room.map_or(0, |(n, _)| n);
     let bare_ambiguous = noun_len == 1 && lex.is_ambiguous_bare(w) && !evidence && !in_list;
     if room_len > 0 && room_len >= noun_len {
-        let (n, key) = room.unwrap_or((0, ""));
+        let (mut n, key) = room.unwrap_or((0, ""));
+        // "a salon floor", "the kitchen area": the space of a room type is that room.
+        if j + n < end
+            && word(tokens, j + n)
+                .is_some_and(|x| ground::rules().is_room_space_word(&lex.singular(x)))
+            && lex.noun_at(tokens, j + n).is_none_or(|(l, ..)| l == 1)
+        {
+            n += 1;
+        }
         let words: Vec<String> = tokens[j..j + n].iter().map(|t| t.text.clone()).collect();
         let mut ws = words.clone();
         if let Some(last) = ws.last_mut() {
@@ -390,44 +404,27 @@ pub(crate) fn parse_np(
             entry = e2;
             plural = p2;
         }
-        // A known noun followed by an unknown noun ends there: "ball pit", "luggage rack".
-        if !plural
-            && start + n < end
-            && let Some(x) = at(start + n)
-            && lex.noun_at(tokens, start + n).is_none()
-            && lex.preposition_at(tokens, start + n).is_none()
-            && lex.verb(x).is_none()
-            && kb.room_type_at(tokens, start + n).is_none()
-            && !lex.is_function_word(x)
-            && lex.landmark(x).is_none()
-            && !lex.is_feature_noun(x)
-            && !lex.is_non_object(x)
-            && !lex.is_adjective(x)
-            && lex.number(&tokens[start + n]).is_none()
-            && !x.ends_with("ing")
-            && !x.ends_with("ed")
-            && !x.ends_with("ly")
-            && x.chars().all(|ch| ch.is_alphabetic())
-            && at(start + n + 1)
-                .is_none_or(|y| lex.is_function_word(y) || lex.landmark(y).is_some())
-        {
-            let mut written: Vec<String> = tokens[start..start + n + 1]
+        // A known noun followed by nouns the lexicon does not know ends with them: "ball
+        // pit", "filter coffee stand" — when WordNet grounds the last one as a thing.
+        if !plural && let Some((len, head)) = compound_tail(lex, kb, tokens, start + n, end) {
+            let last = start + n + len - 1;
+            let mut written: Vec<String> = tokens[start..=last]
                 .iter()
                 .map(|t| t.text.clone())
                 .collect();
-            let plural2 = lex.is_plural(x);
-            if let Some(last) = written.last_mut() {
-                *last = lex.singular(last);
+            np.plural = lex.is_plural(&tokens[last].text);
+            if let Some(w) = written.last_mut() {
+                *w = head.singular.clone();
             }
             let noun = written.join(" ");
-            np.plural = plural2;
+            np.report = Some(head.report(&noun));
             np.head = Head::Object {
                 entry: None,
                 noun: noun.clone(),
                 canonical: noun,
-                head_entry: lex.entry_index(&lex.singular(x)),
+                head_entry: head.family_entry,
             };
-            return Some((np, start + n + 1));
+            return Some((np, last + 1));
         }
         // A part noun with an ordinal or "top": "the top shelf", "the second shelf".
         let head_word = tokens[start + n - 1].text.as_str();
@@ -516,87 +513,83 @@ pub(crate) fn parse_np(
         np.head = Head::NonObject;
         return Some((np, k));
     }
-    // Open vocabulary: up to three unknown words, the last is the head.
+    // Open vocabulary: words the lexicon does not know, the last a noun WordNet grounds.
     if evidence || in_list {
-        let mut k = j;
-        let mut words: Vec<String> = Vec::new();
-        while k < end && words.len() < 3 {
-            let Some(x) = at(k) else { break };
-            if k > j
-                && let Some((n2, e2, p2)) = lex.noun_at(tokens, k)
-                && k + n2 <= end
-            {
+        let strong = np.number.is_some() || np.quant.is_some() || np.group.is_some() || in_list;
+        match open_head(lex, kb, tokens, j, end, &np, strong) {
+            Open::Lexicon {
+                before,
+                n2,
+                entry,
+                plural,
+            } => {
                 np.attrs
                     .modifiers
-                    .extend(tokens[j..k].iter().map(|t| t.raw.clone()));
-                let mut written: Vec<String> =
-                    tokens[k..k + n2].iter().map(|t| t.text.clone()).collect();
+                    .extend(tokens[j..before].iter().map(|t| t.raw.clone()));
+                let mut written: Vec<String> = tokens[before..before + n2]
+                    .iter()
+                    .map(|t| t.text.clone())
+                    .collect();
                 if let Some(last) = written.last_mut() {
                     *last = lex.singular(last);
                 }
-                np.plural = p2;
+                np.plural = plural;
                 np.head = Head::Object {
-                    entry: Some(e2),
+                    entry: Some(entry),
                     noun: written.join(" "),
                     canonical: lex
                         .objects
-                        .get(e2)
+                        .get(entry)
                         .map_or_else(|| written.join(" "), |e| e.noun.clone()),
                     head_entry: None,
                 };
-                return Some((np, k + n2));
+                return Some((np, before + n2));
             }
-            if k > j
-                && let Some((n2, key)) = kb.room_type_at(tokens, k)
-            {
+            Open::Room { before, n2, key } => {
                 np.attrs
                     .modifiers
-                    .extend(tokens[j..k].iter().map(|t| t.raw.clone()));
-                let mut ws: Vec<String> =
-                    tokens[k..k + n2].iter().map(|t| t.text.clone()).collect();
+                    .extend(tokens[j..before].iter().map(|t| t.raw.clone()));
+                let mut ws: Vec<String> = tokens[before..before + n2]
+                    .iter()
+                    .map(|t| t.text.clone())
+                    .collect();
                 if let Some(last) = ws.last_mut() {
                     *last = lex.singular(last);
                 }
                 np.head = Head::Room {
-                    key: key.to_string(),
+                    key,
                     words: ws.join(" "),
                 };
-                return Some((np, k + n2));
+                return Some((np, before + n2));
             }
-            if lex.is_function_word(x)
-                || lex.landmark(x).is_some()
-                || lex.is_setting_noun(x)
-                || lex.is_non_object(x)
-                || lex.number(&tokens[k]).is_some()
-            {
-                break;
-            }
-            if k > j && lex.is_feature_noun(x) {
+            Open::Feature(k) => {
                 np.head = Head::Feature;
-                return Some((np, k + 1));
+                return Some((np, k));
             }
-            words.push(x.to_string());
-            k += 1;
-        }
-        let last_ok = words.last().is_some_and(|l| {
-            !l.ends_with("ly") && !l.ends_with("ing") && l.chars().any(char::is_alphabetic)
-        });
-        if last_ok {
-            let last = words.last().cloned().unwrap_or_default();
-            np.plural = lex.is_plural(&last);
-            let mut sing = words.clone();
-            if let Some(l) = sing.last_mut() {
-                *l = lex.singular(l);
+            Open::Object {
+                adjectives,
+                noun,
+                head,
+                next,
+                plural,
+            } => {
+                np.attrs.modifiers.extend(adjectives);
+                np.plural = plural;
+                np.report = Some(head.report(&noun));
+                np.head = Head::Object {
+                    entry: None,
+                    noun: noun.clone(),
+                    canonical: noun,
+                    head_entry: head.family_entry,
+                };
+                return Some((np, next));
             }
-            let head_entry = sing.last().and_then(|l| lex.entry_index(l));
-            let noun = sing.join(" ");
-            np.head = Head::Object {
-                entry: None,
-                noun: noun.clone(),
-                canonical: noun,
-                head_entry,
-            };
-            return Some((np, k));
+            Open::Dropped { next, report } => {
+                np.report = Some(report);
+                np.head = Head::NonObject;
+                return Some((np, next));
+            }
+            Open::Nothing => {}
         }
     }
     if j > i && (evidence || !np.attrs.modifiers.is_empty()) {
@@ -605,4 +598,292 @@ pub(crate) fn parse_np(
         return Some((np, j));
     }
     None
+}
+
+/// A head noun the lexicon does not know, grounded in WordNet.
+struct Grounded {
+    /// Singular of the last word.
+    singular: String,
+    /// WordNet lemma of the grounded noun (the longest compound WordNet knows).
+    lemma: String,
+    /// The lexicon noun it is built as (nearest hypernym the lexicon knows).
+    family: Option<String>,
+    /// Lexicon index of `family`.
+    family_entry: Option<usize>,
+    /// Hypernym lemmas from the noun to its family.
+    via: Vec<String>,
+}
+
+impl Grounded {
+    fn report(&self, noun: &str) -> NounReport {
+        NounReport {
+            noun: noun.to_string(),
+            lemma: Some(self.lemma.clone()),
+            status: if self.family.is_some() {
+                NounStatus::Routed
+            } else {
+                NounStatus::StandIn
+            },
+            family: self.family.clone(),
+            reason: (!self.via.is_empty()).then(|| self.via.join(" > ")),
+        }
+    }
+}
+
+/// Grounds the noun made of `words` (the last is the head): the longest compound ending at
+/// the head that WordNet knows decides; `strong` says the phrase counts or lists it.
+fn ground_words(lex: &Lexicon, words: &[&str], strong: bool) -> Result<Grounded, String> {
+    let Some(last) = words.last() else {
+        return Err("no noun".to_string());
+    };
+    let mut found: Option<(String, Verdict)> = None;
+    for start in 0..words.len() {
+        let compound = words[start..].join(" ");
+        if ground::noun_lemma(&compound).is_some() {
+            found = Some((compound.clone(), ground::verdict(&compound)));
+            break;
+        }
+    }
+    let (compound, verdict) = match found {
+        Some(f) => f,
+        None => (last.to_string(), ground::verdict(last)),
+    };
+    match verdict {
+        Verdict::Object => {}
+        Verdict::NeedsEvidence if strong => {}
+        Verdict::NeedsEvidence => {
+            return Err("rarely a thing, and the phrase neither counts nor lists it".to_string());
+        }
+        Verdict::NotObject(why) => return Err(why),
+    }
+    let lemma = ground::noun_lemma(&compound).unwrap_or_else(|| compound.clone());
+    let singular = ground::noun_lemma(last).unwrap_or_else(|| lex.singular(last));
+    let family = ground::family(&compound, &|n: &str| lex.lookup(n).is_some());
+    let family_entry = family
+        .as_ref()
+        .and_then(|f| lex.lookup(&f.noun))
+        .and_then(|e| lex.entry_index(&e.noun));
+    Ok(Grounded {
+        singular,
+        lemma,
+        family: family
+            .as_ref()
+            .and_then(|f| lex.lookup(&f.noun))
+            .map(|e| e.noun.clone()),
+        family_entry,
+        via: family.map(|f| f.via).unwrap_or_default(),
+    })
+}
+
+/// A word that may continue an open noun compound: not a function word, a landmark, a
+/// preposition, a verb of the lexicon, a number, and a noun or adjective to WordNet.
+fn compound_word(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], k: usize) -> bool {
+    let Some(x) = word(tokens, k) else {
+        return false;
+    };
+    !lex.is_function_word(x)
+        && lex.landmark(x).is_none()
+        && lex.preposition_at(tokens, k).is_none()
+        && lex.verb(x).is_none()
+        && lex.number(&tokens[k]).is_none()
+        && !lex.is_setting_noun(x)
+        && !lex.is_feature_noun(x)
+        && kb.room_type_at(tokens, k).is_none()
+        && x.chars().all(|c| c.is_alphabetic() || c == '-')
+        && !matches!(ground::only_other_pos(x), Some("verb" | "adverb"))
+}
+
+/// After a lexicon noun: one or two nouns the lexicon does not know that end the phrase
+/// and that WordNet grounds as a thing ("pit" of "ball pit", "coffee stand" of "filter coffee
+/// stand"). Returns (words used, grounding).
+fn compound_tail(
+    lex: &Lexicon,
+    kb: &Knowledge,
+    tokens: &[Token],
+    at: usize,
+    end: usize,
+) -> Option<(usize, Grounded)> {
+    let mut len = 0;
+    while len < 2
+        && at + len < end
+        && lex.noun_at(tokens, at + len).is_none()
+        && compound_word(lex, kb, tokens, at + len)
+        && ground::is_noun(&tokens[at + len].text)
+    {
+        len += 1;
+        if lex.is_plural(&tokens[at + len - 1].text) {
+            break;
+        }
+    }
+    if len == 0 {
+        return None;
+    }
+    let after = tokens.get(at + len);
+    let ends = after.is_none_or(|t| {
+        !t.is_word()
+            || lex.is_function_word(&t.text)
+            || lex.landmark(&t.text).is_some()
+            || lex.preposition_at(tokens, at + len).is_some()
+            || lex.verb(&t.text).is_some()
+    });
+    if !ends {
+        return None;
+    }
+    let words: Vec<&str> = tokens[at..at + len]
+        .iter()
+        .map(|t| t.text.as_str())
+        .collect();
+    // The known noun before makes the phrase an object phrase: a rarely physical head
+    // ("pit") still names the thing.
+    ground_words(lex, &words, true).ok().map(|g| (len, g))
+}
+
+/// What an open-vocabulary phrase turned out to be.
+enum Open {
+    /// A lexicon noun after unknown modifiers ("velvet chaise" → ... "chaise").
+    Lexicon {
+        before: usize,
+        n2: usize,
+        entry: usize,
+        plural: bool,
+    },
+    /// A room word after unknown modifiers.
+    Room {
+        before: usize,
+        n2: usize,
+        key: String,
+    },
+    /// A feature noun ("leather accents").
+    Feature(usize),
+    /// A noun WordNet grounds as a thing.
+    Object {
+        adjectives: Vec<String>,
+        noun: String,
+        head: Grounded,
+        next: usize,
+        plural: bool,
+    },
+    /// Words that name no thing (adjectives, feelings, states, unknown words).
+    Dropped { next: usize, report: NounReport },
+    /// Nothing to read.
+    Nothing,
+}
+
+/// Reads words the lexicon does not know at `j`: the run of compound words, then WordNet
+/// decides whether its last word names a thing. Adjectives before it are modifiers; nouns
+/// before it are part of the name ("filter coffee stand").
+fn open_head(
+    lex: &Lexicon,
+    kb: &Knowledge,
+    tokens: &[Token],
+    j: usize,
+    end: usize,
+    np: &Np,
+    strong: bool,
+) -> Open {
+    let at = |k: usize| if k < end { word(tokens, k) } else { None };
+    let singular_det = matches!(np.det.as_deref(), Some("indefinite" | "each" | "another"))
+        || np.number == Some(1);
+    let mut k = j;
+    while k < end && k - j < 4 {
+        let Some(x) = at(k) else { break };
+        if k > j
+            && let Some((n2, entry, plural)) = lex.noun_at(tokens, k)
+            && k + n2 <= end
+        {
+            return Open::Lexicon {
+                before: k,
+                n2,
+                entry,
+                plural,
+            };
+        }
+        if k > j
+            && let Some((n2, key)) = kb.room_type_at(tokens, k)
+        {
+            return Open::Room {
+                before: k,
+                n2,
+                key: key.to_string(),
+            };
+        }
+        if k > j && lex.is_feature_noun(x) {
+            return Open::Feature(k + 1);
+        }
+        if !compound_word(lex, kb, tokens, k) {
+            break;
+        }
+        // A word that is never an object on its own ("coffee", "reading") may still modify
+        // the noun after it ("coffee stand").
+        if lex.is_non_object(x)
+            && !(k + 1 < end
+                && compound_word(lex, kb, tokens, k + 1)
+                && !lex.is_non_object(&tokens[k + 1].text))
+        {
+            break;
+        }
+        // "a headboard dominates the space": after a singular noun, a verb in -s is the verb.
+        if k > j
+            && singular_det
+            && x.ends_with('s')
+            && ground::only_other_pos(x).is_none()
+            && super::wordnet::wordnet().has_pos(x, super::wordnet::Pos::Verb)
+            && at(k - 1).is_some_and(ground::is_noun)
+        {
+            break;
+        }
+        k += 1;
+        if k > j + 1 && lex.is_plural(x) && ground::is_noun(x) {
+            // A plural noun ends a compound ("chairs", not "chairs cushions").
+            break;
+        }
+    }
+    if k == j {
+        return Open::Nothing;
+    }
+    let words: Vec<&str> = tokens[j..k].iter().map(|t| t.text.as_str()).collect();
+    let raw: Vec<&str> = tokens[j..k].iter().map(|t| t.raw.as_str()).collect();
+    let written = raw.join(" ");
+    // The head is the last word; adjectives before the first noun of the name are modifiers.
+    let name_from = words
+        .iter()
+        .position(|w| ground::is_noun(w) && ground::only_other_pos(w).is_none())
+        .map(|p| {
+            // A word WordNet also knows as an adjective stays a modifier unless it ends the run.
+            let mut q = p;
+            while q + 1 < words.len()
+                && super::wordnet::wordnet().has_pos(words[q], super::wordnet::Pos::Adj)
+            {
+                q += 1;
+            }
+            q
+        })
+        .unwrap_or(words.len() - 1);
+    let name = &words[name_from..];
+    match ground_words(lex, name, strong) {
+        Ok(head) => {
+            let last = words.len() - 1;
+            let mut noun: Vec<String> = name.iter().map(|w| w.to_string()).collect();
+            if let Some(l) = noun.last_mut() {
+                *l = head.singular.clone();
+            }
+            Open::Object {
+                adjectives: raw[..name_from].iter().map(|w| w.to_string()).collect(),
+                noun: noun.join(" "),
+                plural: head.singular != words[last],
+                head,
+                next: k,
+            }
+        }
+        Err(reason) => Open::Dropped {
+            next: k,
+            report: NounReport {
+                noun: written,
+                lemma: ground::noun_lemma(&name.join(" ")),
+                status: NounStatus::Dropped,
+                family: None,
+                reason: Some(reason),
+            },
+        },
+    }
 }
