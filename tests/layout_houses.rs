@@ -25,16 +25,16 @@ fn dev_prompt(id: &str) -> String {
         .unwrap_or_else(|| panic!("no dev prompt {id}"))
 }
 
-/// Room types (layout keys) with counts each house prompt names.
+/// Room types (registry keys) with counts each house prompt names.
 fn expected(id: &str) -> Vec<(&'static str, usize)> {
     match id {
-        "house_01" => vec![("studio", 1), ("bathroom", 1)],
+        "house_01" => vec![("studio_apartment", 1), ("bathroom", 1)],
         "house_03" => vec![("bedroom", 1), ("living_room", 1), ("bathroom", 1)],
-        "house_05" => vec![("reception", 1), ("office", 1), ("bathroom", 1)],
+        "house_05" => vec![("reception", 1), ("private_office", 1), ("bathroom", 1)],
         "house_07" => vec![("bedroom", 1), ("living_kitchen", 1), ("bathroom", 1)],
         "house_09" => vec![
             ("bedroom", 1),
-            ("office", 1),
+            ("study_room", 1),
             ("common_room", 1),
             ("bathroom", 1),
         ],

@@ -119,8 +119,14 @@ fn every_entry_is_well_formed() {
     let mut problems: Vec<String> = Vec::new();
     for (key, rt) in kb.rooms() {
         let p = |problems: &mut Vec<String>, s: String| problems.push(format!("{key}: {s}"));
-        if !(1.5..=30.0).contains(&rt.size[0]) || !(1.5..=30.0).contains(&rt.size[1]) {
-            p(&mut problems, format!("size {:?}", rt.size));
+        let s = &rt.size;
+        if [s.min, s.typical, s.max]
+            .iter()
+            .flatten()
+            .any(|v| !(1.0..=30.0).contains(v))
+            || !(1.5..=30.0).contains(&s.typical[1])
+        {
+            p(&mut problems, format!("size {s:?}"));
         }
         if !(2.2..=6.0).contains(&rt.wall_height) {
             p(&mut problems, format!("wall height {}", rt.wall_height));

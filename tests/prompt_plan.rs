@@ -129,7 +129,7 @@ fn house_rooms_get_their_own_programs() {
     let bath = r
         .rooms
         .iter()
-        .position(|x| x.room_type == "bathroom" && x.parent == Some(1))
+        .position(|x| x.room_type == "en_suite" && x.parent == Some(1))
         .unwrap();
     let plan = plan_house_room(&r, bath);
     assert!(
@@ -141,7 +141,7 @@ fn house_rooms_get_their_own_programs() {
     let other = r
         .rooms
         .iter()
-        .position(|x| x.room_type == "bathroom" && x.parent == Some(2))
+        .position(|x| x.room_type == "en_suite" && x.parent == Some(2))
         .unwrap();
     let plan = plan_house_room(&r, other);
     assert!(plan.requested().is_empty());

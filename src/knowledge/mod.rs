@@ -1,20 +1,25 @@
-//! What the built-in designer knows about rooms: per room type a size prior, default
+//! What the built-in designer knows about rooms: per room type a size range, default
 //! materials, typical furniture with counts and a place rule each, wall and ceiling items,
 //! and which surfaces carry which small objects how densely; plus room-independent defaults
 //! (where a noun goes when the room type does not say, which seat goes with which table, what
 //! goes on a parent).
 //!
-//! The data lives in `src/data/knowledge/*.json`, compiled in. This module loads and checks it
-//! and answers lookups; it does not read prompts (see [`crate::prompt`]) or plan rooms (see
-//! [`crate::stages::plan`]).
+//! Room types live in the room registry ([`rooms`], one file per type under
+//! `src/data/rooms/`), the room-independent defaults in `src/data/knowledge/objects.json`; both
+//! are compiled in. This module loads and checks them and answers lookups; it does not read
+//! prompts (see [`crate::prompt`]) or plan rooms (see [`crate::stages::plan`]).
 
-use std::collections::{BTreeMap, HashMap};
+pub mod rooms;
+
+use std::collections::BTreeMap;
 use std::fmt;
 use std::sync::OnceLock;
 
 use serde::{Deserialize, Serialize};
 
 use crate::prompt::tokens::Token;
+
+pub use rooms::{Registry, Role, RoomType, RoomsError, SizeRange};
 
 /// Where a piece goes (the `place` rule of a knowledge-base item).
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -173,57 +178,6 @@ pub struct SurfaceRule {
     pub place_settings: bool,
 }
 
-/// Everything known about one room type.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct RoomType {
-    /// Words naming the type.
-    pub words: Vec<String>,
-    /// Room type whose lists this one inherits where it gives none.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub extends: Option<String>,
-    /// Clear floor size (x, y), metres.
-    pub size: [f64; 2],
-    /// Wall height, metres.
-    pub wall_height: f64,
-    /// Default floor material.
-    pub floor: String,
-    /// Default wall material.
-    pub wall: String,
-    /// Typical floor furniture.
-    #[serde(default)]
-    pub furniture: Vec<KbItem>,
-    /// Typical wall-mounted items.
-    #[serde(default)]
-    pub wall_items: Vec<KbItem>,
-    /// Typical ceiling items.
-    #[serde(default)]
-    pub ceiling: Vec<KbItem>,
-    /// Small objects per parent.
-    #[serde(default)]
-    pub surfaces: Vec<SurfaceRule>,
-}
-
-impl RoomType {
-    /// The room type's surface rule for a parent noun.
-    pub fn surface_rule(&self, parent: &str) -> Option<&SurfaceRule> {
-        self.surfaces.iter().find(|s| s.parent == parent)
-    }
-
-    /// The room type's item for a noun (any of furniture, wall, ceiling).
-    pub fn item(&self, noun: &str) -> Option<&KbItem> {
-        self.furniture
-            .iter()
-            .chain(&self.wall_items)
-            .chain(&self.ceiling)
-            .find(|i| i.noun == noun)
-    }
-}
-
-#[derive(Debug, Deserialize)]
-struct RoomFile {
-    room_types: BTreeMap<String, RoomType>,
-}
-
 #[derive(Debug, Deserialize)]
 struct ObjectFile {
     placement: BTreeMap<String, Place>,
@@ -234,140 +188,45 @@ struct ObjectFile {
 /// Errors in the compiled-in knowledge base.
 #[derive(Debug, thiserror::Error)]
 pub enum KnowledgeError {
-    /// A data file does not parse.
-    #[error("knowledge file {file} does not parse: {source}")]
-    Parse {
-        /// Which file.
-        file: &'static str,
-        /// The JSON error.
-        source: serde_json::Error,
-    },
-    /// A room type is defined twice.
-    #[error("room type {0:?} is defined twice")]
-    DuplicateType(String),
-    /// A word names two room types.
-    #[error("the word {word:?} names both {a:?} and {b:?}")]
-    DuplicateWord {
-        /// The word.
-        word: String,
-        /// First type.
-        a: String,
-        /// Second type.
-        b: String,
-    },
-    /// `extends` names a missing type.
-    #[error("room type {child:?} extends unknown type {parent:?}")]
-    UnknownParent {
-        /// The extending type.
-        child: String,
-        /// The missing parent.
-        parent: String,
-    },
+    /// The room registry is broken.
+    #[error(transparent)]
+    Rooms(#[from] RoomsError),
+    /// The object file does not parse.
+    #[error("knowledge file knowledge/objects.json does not parse")]
+    Objects(#[source] serde_json::Error),
 }
 
 /// The knowledge base.
 #[derive(Debug, Default)]
 pub struct Knowledge {
-    rooms: BTreeMap<String, RoomType>,
-    words: HashMap<String, String>,
-    max_words: usize,
+    rooms: Registry,
     placement: BTreeMap<String, Place>,
     seats: BTreeMap<String, (String, u32)>,
     surfaces: Vec<SurfaceRule>,
 }
 
-const ROOM_FILES: [(&str, &str); 3] = [
-    (
-        "knowledge/rooms_home.json",
-        include_str!("../data/knowledge/rooms_home.json"),
-    ),
-    (
-        "knowledge/rooms_work.json",
-        include_str!("../data/knowledge/rooms_work.json"),
-    ),
-    (
-        "knowledge/rooms_public.json",
-        include_str!("../data/knowledge/rooms_public.json"),
-    ),
-];
+const OBJECTS: &str = include_str!("../data/knowledge/objects.json");
 
 impl Knowledge {
-    /// Builds the knowledge base from room files (name, JSON) and the object file.
-    pub fn parse(
-        room_files: &[(&'static str, &str)],
-        objects: &str,
-    ) -> Result<Knowledge, KnowledgeError> {
-        let mut rooms: BTreeMap<String, RoomType> = BTreeMap::new();
-        for (file, text) in room_files {
-            let f: RoomFile = serde_json::from_str(text)
-                .map_err(|source| KnowledgeError::Parse { file, source })?;
-            for (k, v) in f.room_types {
-                if rooms.insert(k.clone(), v).is_some() {
-                    return Err(KnowledgeError::DuplicateType(k));
-                }
-            }
-        }
-        // Inherit lists from the parent where the child gives none.
-        let keys: Vec<String> = rooms.keys().cloned().collect();
-        for k in &keys {
-            let Some(parent) = rooms.get(k).and_then(|r| r.extends.clone()) else {
-                continue;
-            };
-            let p = rooms
-                .get(&parent)
-                .cloned()
-                .ok_or_else(|| KnowledgeError::UnknownParent {
-                    child: k.clone(),
-                    parent: parent.clone(),
-                })?;
-            if let Some(r) = rooms.get_mut(k) {
-                if r.furniture.is_empty() {
-                    r.furniture = p.furniture;
-                }
-                if r.wall_items.is_empty() {
-                    r.wall_items = p.wall_items;
-                }
-                if r.ceiling.is_empty() {
-                    r.ceiling = p.ceiling;
-                }
-                if r.surfaces.is_empty() {
-                    r.surfaces = p.surfaces;
-                }
-            }
-        }
-        let mut words: HashMap<String, String> = HashMap::new();
-        let mut max_words = 1;
-        for (k, r) in &rooms {
-            for w in &r.words {
-                if let Some(a) = words.get(w) {
-                    return Err(KnowledgeError::DuplicateWord {
-                        word: w.clone(),
-                        a: a.clone(),
-                        b: k.clone(),
-                    });
-                }
-                max_words = max_words.max(w.split(' ').count());
-                words.insert(w.clone(), k.clone());
-            }
-        }
-        let o: ObjectFile =
-            serde_json::from_str(objects).map_err(|source| KnowledgeError::Parse {
-                file: "knowledge/objects.json",
-                source,
-            })?;
+    /// Builds the knowledge base from the room registry and the object file.
+    pub fn parse(rooms: Registry, objects: &str) -> Result<Knowledge, KnowledgeError> {
+        let o: ObjectFile = serde_json::from_str(objects).map_err(KnowledgeError::Objects)?;
         Ok(Knowledge {
             rooms,
-            words,
-            max_words,
             placement: o.placement,
             seats: o.seats,
             surfaces: o.surfaces,
         })
     }
 
+    /// The room registry.
+    pub fn registry(&self) -> &Registry {
+        &self.rooms
+    }
+
     /// Every room type, by key.
     pub fn rooms(&self) -> &BTreeMap<String, RoomType> {
-        &self.rooms
+        self.rooms.types()
     }
 
     /// One room type.
@@ -377,24 +236,24 @@ impl Knowledge {
 
     /// The room type a word or phrase names ("exam room", "kitchenette").
     pub fn room_type_of(&self, words: &str) -> Option<&str> {
-        self.words.get(words).map(String::as_str)
+        self.rooms.type_of(words)
     }
 
     /// The longest room-type phrase starting at `tokens[at]`: (words used, type key). Plurals
     /// are read in the singular ("exam rooms").
     pub fn room_type_at(&self, tokens: &[Token], at: usize) -> Option<(usize, &str)> {
         let lex = crate::prompt::lexicon::lexicon();
-        for len in (1..=self.max_words).rev() {
+        for len in (1..=self.rooms.max_words()).rev() {
             let Some(words) = crate::prompt::lexicon::words_at(tokens, at, len) else {
                 continue;
             };
             let raw = words.join(" ");
-            if let Some(k) = self.words.get(&raw) {
+            if let Some(k) = self.rooms.type_of(&raw) {
                 return Some((len, k));
             }
             let mut sing: Vec<String> = words.iter().map(|w| w.to_string()).collect();
             sing[len - 1] = lex.singular(words[len - 1]);
-            if let Some(k) = self.words.get(&sing.join(" ")) {
+            if let Some(k) = self.rooms.type_of(&sing.join(" ")) {
                 return Some((len, k));
             }
         }
@@ -432,19 +291,27 @@ impl Knowledge {
     }
 }
 
-/// The compiled-in knowledge base. A broken data file yields an empty base here; the test
+/// The compiled-in knowledge base. Broken data yields an empty base here (logged); the test
 /// `compiled_knowledge_parses` catches that before it ships.
 pub fn knowledge() -> &'static Knowledge {
     static KB: OnceLock<Knowledge> = OnceLock::new();
     KB.get_or_init(|| {
-        Knowledge::parse(&ROOM_FILES, include_str!("../data/knowledge/objects.json"))
-            .unwrap_or_default()
+        check_compiled().unwrap_or_else(|e| {
+            let mut msg = e.to_string();
+            let mut cause = std::error::Error::source(&e);
+            while let Some(c) = cause {
+                msg.push_str(&format!(": {c}"));
+                cause = c.source();
+            }
+            tracing::error!("the compiled-in knowledge base does not load: {msg}");
+            Knowledge::default()
+        })
     })
 }
 
 /// Parses the compiled-in data again, returning the error (for tests and `check` tools).
 pub fn check_compiled() -> Result<Knowledge, KnowledgeError> {
-    Knowledge::parse(&ROOM_FILES, include_str!("../data/knowledge/objects.json"))
+    Knowledge::parse(Registry::compiled()?, OBJECTS)
 }
 
 #[cfg(test)]

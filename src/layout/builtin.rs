@@ -137,6 +137,7 @@ impl BuiltinLayoutDesigner {
             }
             let floor = r["floor"].as_str().unwrap_or_default();
             let wet_ok = super::knowledge::knowledge()
+                .house()
                 .wet_floor_materials
                 .iter()
                 .any(|m| m == floor);
@@ -299,7 +300,7 @@ impl Critic<LayoutState> for BuiltinLayoutCritic {
 
         // Materials: wet rooms on water-resistant floors, the prompt's materials used, one
         // floor per room type.
-        let wet_ok = &super::knowledge::knowledge().wet_floor_materials;
+        let wet_ok = &super::knowledge::knowledge().house().wet_floor_materials;
         let mut materials = 10.0;
         for r in rooms.iter().filter(|r| r["role"] == "wet") {
             let floor = r["floor"].as_str().unwrap_or_default();

@@ -3,7 +3,7 @@
 //! prompts for the placement stages.
 //!
 //! The data flows: [`brief`] reads the prompt into rooms (counts, en-suites, the sentences
-//! about each room), [`spec`] sizes them (type priors, size words, contents) and decides who
+//! about each room), [`spec`] sizes them (type sizes, size words, contents) and decides who
 //! may be entered from whom, [`search`] places them edge to edge as [`cells`], [`connect`]
 //! plans doors and windows, [`walls`] builds the scene rooms, [`validate`] checks them,
 //! [`architecture`] turns a room into its static asset. [`state`], [`tools`], [`builtin`] and
@@ -29,7 +29,7 @@ pub mod walls;
 use rand::RngExt;
 use rand::rngs::ChaCha8Rng;
 
-use crate::prompt::{self, Reading};
+use crate::prompt::Reading;
 use crate::scene::{Opening, OpeningKind, Room, Wall};
 
 /// Default wall thickness, metres.
@@ -67,31 +67,21 @@ pub fn rectangle_walls(
         .collect()
 }
 
-/// One room for the whole prompt without the layout stage: clear floor from the type's prior
-/// (scaled by size words and jittered by the seed), a door in the south wall and a window in
-/// the north wall. The pipeline runs [`stage::run_layout`] instead.
+/// One room for the whole prompt without the layout stage: clear floor from the type's typical
+/// size (scaled by size words inside the type's range, then jittered by the seed), a door in
+/// the south wall and a window in the north wall. The pipeline runs [`stage::run_layout`]
+/// instead.
 pub fn single_room(
     room_id: &str,
     reading: &Reading,
     prompt_text: &str,
     rng: &mut ChaCha8Rng,
 ) -> Room {
-    let types = prompt::room_types();
-    let info = types
-        .get(&reading.room_type)
-        .or_else(|| types.get("room"))
-        .cloned()
-        .unwrap_or(prompt::RoomTypeInfo {
-            size: [4.0, 3.6],
-            wall_height: 2.7,
-            floor: "oak".into(),
-            wall: "plaster".into(),
-            words: vec![],
-            defaults: Default::default(),
-        });
+    let info = knowledge::kind(&reading.room_type);
+    let [long, short] = info.size.scaled(reading.size_scale);
     let jitter = |rng: &mut ChaCha8Rng| 1.0 + rng.random_range(-0.05..0.05);
-    let w = (info.size[0] * reading.size_scale * jitter(rng) * 10.0).round() / 10.0;
-    let d = (info.size[1] * reading.size_scale * jitter(rng) * 10.0).round() / 10.0;
+    let w = (long * jitter(rng) * 10.0).round() / 10.0;
+    let d = (short * jitter(rng) * 10.0).round() / 10.0;
     let w = w.max(2.0);
     let d = d.max(2.0);
     let mut walls = rectangle_walls(room_id, [0.0, 0.0], w, d, WALL_THICKNESS);
@@ -129,14 +119,15 @@ pub fn single_room(
         floor_polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]],
         wall_height: info.wall_height,
         walls,
-        floor_material: info.floor,
-        wall_material: info.wall,
+        floor_material: info.floor.clone(),
+        wall_material: info.wall.clone(),
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::prompt;
     use rand::SeedableRng;
 
     #[test]

@@ -2,10 +2,10 @@
 //! which it should be next to, its materials and windows. Built from a [`HouseBrief`]; the
 //! placement search ([`super::search`]) and the architecture ([`super::walls`]) work from it.
 //!
-//! Sizes start from the room type's prior, scaled by the prompt's size words, and grow until
-//! the room holds what its prompt asks for (furniture footprints plus circulation, and wall
-//! length for pieces that stand against walls). A corridor grows with the rooms that open
-//! onto it.
+//! Sizes start from the room type's typical size, scaled by the prompt's size words within the
+//! type's size range, and grow until the room holds what its prompt asks for (furniture
+//! footprints plus circulation, and wall length for pieces that stand against walls). A
+//! corridor grows with the rooms that open onto it.
 
 use serde::{Deserialize, Serialize};
 
@@ -27,7 +27,7 @@ pub const TALL_WALL_HEIGHT: f64 = 3.0;
 pub struct RoomSpec {
     /// Room id, e.g. `exam_room_1`.
     pub id: String,
-    /// Layout room type (key of the layout knowledge table).
+    /// Room type (a key of the room registry, [`crate::knowledge::rooms`]).
     pub room_type: String,
     /// What the prompt calls it, e.g. "exam room".
     pub label: String,
@@ -221,29 +221,11 @@ fn round1(v: f64) -> f64 {
     (v * 10.0).round() / 10.0
 }
 
-/// The room type the prompt reader's tables know for a layout type (furniture defaults come
-/// from there); a type the reader does not know keeps its own key and gets no defaults.
-pub fn reader_room_type(layout_type: &str) -> String {
-    let table = prompt::room_types();
-    if table.contains_key(layout_type) {
-        return layout_type.to_string();
-    }
-    let alias = match layout_type {
-        "en_suite" => "bathroom",
-        "master_bedroom" | "guest_bedroom" | "kids_bedroom" | "nursery" => "bedroom",
-        "lounge" | "common_room" | "studio" | "living_kitchen" => "living_room",
-        "break_room" => "kitchen",
-        "meeting_room" | "conference_room" => "office",
-        _ => layout_type,
-    };
-    alias.to_string()
-}
-
 /// The furniture plan of a room prompt, read the way the placement stages will read it.
 pub fn room_plan(room_type: &str, room_prompt: &str, is_house: bool) -> RoomPlan {
     let mut reading = prompt::read(room_prompt);
     if is_house {
-        reading.room_type = reader_room_type(room_type);
+        reading.room_type = room_type.to_string();
     }
     plan_room(&reading)
 }
@@ -259,7 +241,7 @@ pub fn house_spec(brief: &HouseBrief) -> HouseSpec {
         let scale = r.size_scale * brief.size_scale;
         let prompt_text = brief.room_prompt(i);
         let plan = room_plan(&r.room_type, &prompt_text, brief.is_house);
-        let base = [kind.size[0] * scale, kind.size[1] * scale];
+        let base = kind.size.scaled(scale);
         let size = if kind.role == Role::Hub {
             [round1(base[0]), round1(base[1])]
         } else {
@@ -270,7 +252,7 @@ pub fn house_spec(brief: &HouseBrief) -> HouseSpec {
         let house_floor = brief
             .floor_material
             .clone()
-            .filter(|m| !wet || k.wet_floor_materials.contains(m));
+            .filter(|m| !wet || k.house().wet_floor_materials.contains(m));
         rooms.push(RoomSpec {
             id,
             room_type: r.room_type.clone(),
@@ -355,7 +337,7 @@ pub fn connect(spec: &mut HouseSpec) {
     // The entrance: reception or lobby, else the hallway, else the room type people come in
     // through (living room, restaurant, ...), else the largest passable room, else the
     // largest room.
-    let living = k.entrance_preference.iter().find_map(|t| {
+    let living = k.house().entrance_preference.iter().find_map(|t| {
         spec.rooms
             .iter()
             .filter(|r| &r.room_type == t)
@@ -377,9 +359,9 @@ pub fn connect(spec: &mut HouseSpec) {
 
     // Rule adjacencies (kitchen next to the dining room, ...).
     let mut rule_pairs: Vec<Adjacency> = Vec::new();
-    for rule in &k.adjacency {
-        for a in spec.rooms.iter().filter(|r| r.room_type == rule.a) {
-            let target = rule.b.iter().find_map(|t| {
+    for (rule_type, rule) in k.adjacency() {
+        for a in spec.rooms.iter().filter(|r| r.room_type == rule_type) {
+            let target = rule.next_to.iter().find_map(|t| {
                 spec.rooms
                     .iter()
                     .find(|r| &r.room_type == t && r.id != a.id)

@@ -3,11 +3,11 @@
 
 use std::collections::BTreeMap;
 
+use super::architecture;
 use super::builtin::{BuiltinLayoutCritic, BuiltinLayoutDesigner};
 use super::state::LayoutState;
 use super::tools;
 use super::validate::Validation;
-use super::{architecture, spec};
 use crate::agents::llm::{LlmCritic, LlmDesigner, LlmOrchestrator};
 use crate::agents::{
     AgentError, BuiltinOrchestrator, Critic, Designer, Orchestrator, RunLog, StageConfig,
@@ -165,12 +165,12 @@ pub fn install_rooms(state: &mut SceneState, rooms: &[Room]) -> Result<(), Geome
     Ok(())
 }
 
-/// The prompt reading the placement stages of `room` work from: its own prompt, with the room
-/// type the reader's tables know (in a house; a one-room prompt keeps the reader's own type).
+/// The prompt reading the placement stages of `room` work from: its own prompt, with the
+/// layout's room type (in a house; a one-room prompt keeps the reader's own type).
 pub fn room_reading(room: &Room, is_house: bool) -> Reading {
     let mut reading = crate::prompt::read(&room.prompt);
     if is_house {
-        reading.room_type = spec::reader_room_type(&room.room_type);
+        reading.room_type = room.room_type.clone();
     }
     reading
 }

@@ -24,9 +24,6 @@ pub mod rooms;
 pub mod tokens;
 pub mod wordnet;
 
-use std::collections::BTreeMap;
-use std::sync::OnceLock;
-
 use serde::{Deserialize, Serialize};
 
 pub use attributes::Attributes;
@@ -118,52 +115,6 @@ impl Reading {
             }
         }
     }
-}
-
-/// Room-type prior (the layout's view of the knowledge base).
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct RoomTypeInfo {
-    /// Clear interior size (x, y), metres.
-    pub size: [f64; 2],
-    /// Wall height, metres.
-    pub wall_height: f64,
-    /// Default floor material.
-    pub floor: String,
-    /// Default wall material.
-    pub wall: String,
-    /// Words naming the type.
-    pub words: Vec<String>,
-    /// Typical objects (canonical noun -> count) for rooms the prompt leaves empty.
-    #[serde(default)]
-    pub defaults: BTreeMap<String, u32>,
-}
-
-/// The room-type table, derived from the knowledge base.
-pub fn room_types() -> &'static BTreeMap<String, RoomTypeInfo> {
-    static TABLE: OnceLock<BTreeMap<String, RoomTypeInfo>> = OnceLock::new();
-    TABLE.get_or_init(|| {
-        knowledge()
-            .rooms()
-            .iter()
-            .map(|(k, r)| {
-                let mut defaults = BTreeMap::new();
-                for item in r.furniture.iter().chain(&r.wall_items).chain(&r.ceiling) {
-                    if item.count[0] > 0 {
-                        defaults.insert(item.noun.clone(), item.count[0]);
-                    }
-                }
-                let info = RoomTypeInfo {
-                    size: r.size,
-                    wall_height: r.wall_height,
-                    floor: r.floor.clone(),
-                    wall: r.wall.clone(),
-                    words: r.words.clone(),
-                    defaults,
-                };
-                (k.clone(), info)
-            })
-            .collect()
-    })
 }
 
 /// Singular form of an English noun.

@@ -516,10 +516,21 @@ impl RoomReading {
 
 /// The room a room phrase refers to, given the room in focus: by name ("the second
 /// bedroom"), by possessive ("its bathroom": the child of the room in focus), by ordinal among
-/// rooms of the type ("the first exam room"), else the first room of the type.
+/// rooms of the type ("the first exam room"), else the first room of the type. A type also
+/// names the types that extend it when the house has none of its own ("its bathroom" is the
+/// en-suite, "the bedroom" the master bedroom).
 pub(crate) fn resolve(rooms: &[RoomReading], np: &Np, current: usize) -> Option<usize> {
     let Head::Room { key, words } = &np.head else {
         return None;
+    };
+    let registry = crate::knowledge::knowledge().registry();
+    let key: &String = if rooms.iter().any(|r| r.room_type == *key) {
+        key
+    } else {
+        match rooms.iter().find(|r| registry.is_a(&r.room_type, key)) {
+            Some(r) => &r.room_type,
+            None => key,
+        }
     };
     if words == "room" && np.ordinal.is_none() {
         return Some(current);

@@ -340,7 +340,7 @@ fn house_splitting() {
     );
     assert_eq!(r.rooms.len(), 5);
     let shower = find(&r, "shower");
-    assert_eq!(r.rooms[shower.room].room_type, "bathroom");
+    assert_eq!(r.rooms[shower.room].room_type, "en_suite");
     assert_eq!(r.rooms[shower.room].parent, Some(find(&r, "bed").room));
     let r = read(
         "An apartment with a master bedroom and a second bedroom. The second bedroom has a desk.",

@@ -28,7 +28,7 @@ pub const MAX_ROOMS: usize = 40;
 /// One room the prompt asks for.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct RoomRequest {
-    /// Layout room type (a key of the layout knowledge table).
+    /// Room type (a key of the room registry, [`crate::knowledge::rooms`]).
     pub room_type: String,
     /// The words the prompt uses for it, singular ("exam room").
     pub label: String,
@@ -79,7 +79,7 @@ pub struct HouseBrief {
 
 /// Index of the room an object noun in `toks` belongs in, by the item table.
 fn room_for_items(toks: &[Tok], rooms: &[RoomRequest]) -> Option<usize> {
-    let items = &knowledge().items_to_rooms;
+    let items = &knowledge().house().items_to_rooms;
     for i in 0..toks.len() {
         for n in [2usize, 1] {
             if i + n > toks.len() {
@@ -185,7 +185,9 @@ pub fn read(prompt: &str) -> HouseBrief {
     let (head_end, listed, head_mentions) = room_list(text, first);
     let head_toks = tokens(text, first.0, head_end);
     let k = knowledge();
-    let head_has_house_noun = head_toks.iter().any(|t| k.house_nouns.contains(&t.w));
+    let head_has_house_noun = head_toks
+        .iter()
+        .any(|t| k.house().house_nouns.contains(&t.w));
     let listed_total: usize = listed.iter().map(|l| l.count).sum();
     let head_room = head_mentions
         .iter()
@@ -199,7 +201,7 @@ pub fn read(prompt: &str) -> HouseBrief {
         rooms: Vec::new(),
         style: head_toks
             .iter()
-            .filter(|t| k.style_words.contains(&t.w))
+            .filter(|t| k.house().style_words.contains(&t.w))
             .map(|t| t.w.clone())
             .collect(),
         house_text: Vec::new(),
@@ -422,7 +424,7 @@ fn attribute(
         brief.wall_material = wall.or(brief.wall_material.take());
         brief.style.extend(
             toks.iter()
-                .filter(|t| knowledge().style_words.contains(&t.w))
+                .filter(|t| knowledge().house().style_words.contains(&t.w))
                 .map(|t| t.w.clone()),
         );
         brief.house_text.push(body);

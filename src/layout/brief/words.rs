@@ -176,7 +176,11 @@ pub(super) fn mentions(toks: &[Tok]) -> Vec<Mention> {
             }
             if let Some(next) = toks.get(i + n) {
                 let nw = singular(&next.w);
-                if k.not_room_after.iter().any(|x| *x == next.w || *x == nw) {
+                if k.house()
+                    .not_room_after
+                    .iter()
+                    .any(|x| *x == next.w || *x == nw)
+                {
                     continue;
                 }
             }
@@ -332,6 +336,7 @@ pub(super) fn house_wide(toks: &[Tok]) -> bool {
         })
         || (toks.len() > 1
             && knowledge()
+                .house()
                 .house_nouns
                 .iter()
                 .any(|n| *n == w[1] && matches!(w[0], "the" | "this")))

@@ -21,7 +21,7 @@ pub struct RoomArg {
     /// How many rooms of this type (default 1).
     #[serde(default)]
     pub count: Option<u32>,
-    /// Clear width (long side), metres; from the type's prior and contents when omitted.
+    /// Clear width (long side), metres; from the type's typical size and contents when omitted.
     #[serde(default)]
     pub width_m: Option<f64>,
     /// Clear depth (short side), metres.
@@ -50,7 +50,7 @@ pub struct GenerateArgs {
 pub(super) fn type_key(words: &str) -> String {
     let toks = crate::prompt::tokenize(words);
     let key = words.trim().to_lowercase().replace([' ', '-'], "_");
-    if knowledge::knowledge().room_types.contains_key(&key) {
+    if knowledge::knowledge().get(&key).is_some() {
         return key;
     }
     for (w, ty) in room_words() {
