@@ -95,14 +95,10 @@ struct Score {
     misses: Vec<String>,
 }
 
-fn understood(r: &Reading) -> bool {
-    !r.mentions.is_empty() || r.rooms.iter().any(|x| x.room_type != "room")
-}
-
 fn check(id: &str, kind: &str, r: &Reading, reqs: &[Value], s: &mut Score) {
     if kind == "refuse" {
         s.refuse += 1;
-        if understood(r) {
+        if r.understood() {
             s.misses.push(format!("{id}: not refused"));
         } else {
             s.refuse_met += 1;

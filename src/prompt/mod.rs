@@ -65,8 +65,8 @@ pub struct Reading {
 }
 
 impl Reading {
-    /// True when the reader understood something: a room word or an object noun (dropped
-    /// words do not count).
+    /// True when the reader understood something: a room word or an object noun grounded in
+    /// the lexicon or WordNet (dropped and unknown words do not count).
     pub fn understood(&self) -> bool {
         !self.mentions.is_empty() || self.nouns.iter().any(|n| n.status != NounStatus::Dropped)
     }

@@ -515,7 +515,15 @@ pub(crate) fn parse_np(
     }
     // Open vocabulary: words the lexicon does not know, the last a noun WordNet grounds.
     if evidence || in_list {
-        let strong = np.number.is_some() || np.quant.is_some() || np.group.is_some() || in_list;
+        // Counted, listed or introduced with "a": the phrase presents a thing.
+        let strong = np.number.is_some()
+            || np.quant.is_some()
+            || np.group.is_some()
+            || in_list
+            || matches!(
+                np.det.as_deref(),
+                Some("indefinite" | "each" | "another" | "several")
+            );
         match open_head(lex, kb, tokens, j, end, &np, strong) {
             Open::Lexicon {
                 before,
@@ -612,6 +620,8 @@ struct Grounded {
     family_entry: Option<usize>,
     /// Hypernym lemmas from the noun to its family.
     via: Vec<String>,
+    /// No dictionary knows the word.
+    unknown: bool,
 }
 
 impl Grounded {
@@ -619,13 +629,19 @@ impl Grounded {
         NounReport {
             noun: noun.to_string(),
             lemma: Some(self.lemma.clone()),
-            status: if self.family.is_some() {
+            status: if self.unknown {
+                NounStatus::Unknown
+            } else if self.family.is_some() {
                 NounStatus::Routed
             } else {
                 NounStatus::StandIn
             },
             family: self.family.clone(),
-            reason: (!self.via.is_empty()).then(|| self.via.join(" > ")),
+            reason: if self.unknown {
+                Some("no dictionary knows the word; counted or listed, so a stand-in".to_string())
+            } else {
+                (!self.via.is_empty()).then(|| self.via.join(" > "))
+            },
         }
     }
 }
@@ -646,6 +662,18 @@ fn ground_words(lex: &Lexicon, words: &[&str], strong: bool) -> Result<Grounded,
     }
     let (compound, verdict) = match found {
         Some(f) => f,
+        // A word no dictionary knows ("hoverboards") is a thing only where the phrase counts
+        // or lists it; it stands in, and grounds nothing (see `Reading::understood`).
+        None if strong && !ground::is_word(last) && !lex.is_non_object(last) => {
+            return Ok(Grounded {
+                singular: lex.singular(last),
+                lemma: words.join(" "),
+                family: None,
+                family_entry: None,
+                via: Vec::new(),
+                unknown: true,
+            });
+        }
         None => (last.to_string(), ground::verdict(last)),
     };
     match verdict {
@@ -672,6 +700,7 @@ fn ground_words(lex: &Lexicon, words: &[&str], strong: bool) -> Result<Grounded,
             .map(|e| e.noun.clone()),
         family_entry,
         via: family.map(|f| f.via).unwrap_or_default(),
+        unknown: false,
     })
 }
 

@@ -16,6 +16,9 @@ pub enum NounStatus {
     Routed,
     /// A noun WordNet grounds as a thing with no family on its hypernyms: a stand-in shape.
     StandIn,
+    /// A word no dictionary knows, counted or listed like an object: a stand-in shape. It
+    /// does not count as understood.
+    Unknown,
     /// A room or building word.
     Room,
     /// Not built: no physical thing, not a noun, or unknown.
@@ -29,6 +32,7 @@ impl NounStatus {
             NounStatus::Lexicon => "lexicon",
             NounStatus::Routed => "routed",
             NounStatus::StandIn => "stand-in",
+            NounStatus::Unknown => "unknown",
             NounStatus::Room => "room",
             NounStatus::Dropped => "dropped",
         }
