@@ -62,6 +62,10 @@ pub struct Reading {
     /// Every noun read and what became of it, in prompt order, once per noun.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub nouns: Vec<NounReport>,
+    /// What the reader capped or could not do, in words for the user ("40 offices asked
+    /// for, 20 built: ...").
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
 }
 
 impl Reading {
@@ -174,6 +178,7 @@ pub fn read(prompt: &str) -> Reading {
         styles: st.styles,
         density,
         nouns: noun_reports(&chunks),
+        notes: st.notes,
     }
 }
 

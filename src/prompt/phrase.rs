@@ -354,6 +354,25 @@ pub(crate) fn parse_np(
     let noun_len = noun.map_or(0, |(n, ..)| n);
     let room_len = room.map_or(0, |(n, _)| n);
     let bare_ambiguous = noun_len == 1 && lex.is_ambiguous_bare(w) && !evidence && !in_list;
+    // "a kiln room", "a boot room": nouns before a room word name the room.
+    if room_len == 0
+        && let Some((n, key, words)) = room_compound(lex, kb, tokens, j, end)
+        && noun_len < n
+    {
+        np.plural = lex.is_plural(&tokens[j + n - 1].text);
+        np.head = Head::Room { key, words };
+        return Some((np, j + n));
+    }
+    // A room or building WordNet knows and the registry does not ("scullery"): the nearest
+    // room type along its hypernyms.
+    if room_len == 0
+        && noun_len == 0
+        && let Some((key, words)) = wordnet_room(lex, tokens, j, end)
+    {
+        np.plural = lex.is_plural(w);
+        np.head = Head::Room { key, words };
+        return Some((np, j + 1));
+    }
     if room_len > 0 && room_len >= noun_len {
         let (mut n, key) = room.unwrap_or((0, ""));
         // "a salon floor", "the kitchen area": the space of a room type is that room.
@@ -915,4 +934,95 @@ fn open_head(
             },
         },
     }
+}
+
+/// The room type a room named after an object belongs to ("kiln room": where kilns are):
+/// the house table of where objects go, else the first type whose furniture lists it, else a
+/// generic room.
+fn type_for_object(lex: &Lexicon, noun: &str) -> String {
+    let reg = crate::knowledge::knowledge();
+    let canonical = lex
+        .lookup(noun)
+        .map_or_else(|| noun.to_string(), |e| e.noun.clone());
+    let registry = crate::knowledge::rooms::registry();
+    if let Some(t) = registry
+        .house()
+        .items_to_rooms
+        .get(&canonical)
+        .and_then(|v| v.first())
+    {
+        return t.clone();
+    }
+    reg.rooms()
+        .iter()
+        .find(|(_, r)| r.furniture.iter().any(|i| i.noun == canonical))
+        .map_or_else(|| "room".to_string(), |(k, _)| k.clone())
+}
+
+/// One or two nouns before a room word ("kiln room", "pottery storage room"): (words used,
+/// type, words as written). A generic room word ("room", "area") takes its type from the
+/// nouns; a typed one keeps its type.
+fn room_compound(
+    lex: &Lexicon,
+    kb: &Knowledge,
+    tokens: &[Token],
+    j: usize,
+    end: usize,
+) -> Option<(usize, String, String)> {
+    for m in 1..=2usize {
+        if j + m >= end {
+            return None;
+        }
+        let w = word(tokens, j + m - 1)?;
+        let nounish = ground::is_noun(w) || lex.noun_at(tokens, j + m - 1).is_some();
+        if !nounish
+            || lex.is_function_word(w)
+            || lex.preposition_at(tokens, j + m - 1).is_some()
+            || lex.landmark(w).is_some()
+            || lex.verb(w).is_some()
+        {
+            return None;
+        }
+        if let Some((rn, key)) = kb.room_type_at(tokens, j + m)
+            && j + m + rn <= end
+        {
+            let mut written: Vec<String> = tokens[j..j + m + rn]
+                .iter()
+                .map(|t| t.text.clone())
+                .collect();
+            if let Some(l) = written.last_mut() {
+                *l = lex.singular(l);
+            }
+            let key = if key == "room" {
+                type_for_object(lex, &lex.singular(&tokens[j + m - 1].text))
+            } else {
+                key.to_string()
+            };
+            return Some((m + rn, key, written.join(" ")));
+        }
+    }
+    None
+}
+
+/// A single word WordNet knows as a room, building or place of business, and rarely as a
+/// thing ("scullery", "bakehouse"): the nearest registry type along its hypernyms, else a
+/// generic room.
+fn wordnet_room(lex: &Lexicon, tokens: &[Token], j: usize, end: usize) -> Option<(String, String)> {
+    if j >= end {
+        return None;
+    }
+    let w = word(tokens, j)?;
+    if lex.is_function_word(w) || lex.is_non_object(w) || lex.landmark(w).is_some() {
+        return None;
+    }
+    let info = ground::noun_info(w)?;
+    if !info.roomlike || info.share >= ground::rules().min_share {
+        return None;
+    }
+    let reg = crate::knowledge::knowledge();
+    let family = ground::room_family(w, &|n: &str| reg.room_type_of(n).is_some());
+    let key = family
+        .and_then(|f| reg.room_type_of(&f.noun).map(str::to_string))
+        .unwrap_or_else(|| "room".to_string());
+    Some((key, info.lemma))
 }

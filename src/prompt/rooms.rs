@@ -71,8 +71,8 @@ pub struct RoomReading {
     /// The room this one belongs to (an en-suite bathroom's bedroom).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub parent: Option<usize>,
-    /// Size factor from words such as "small" (0.8) or "spacious" (1.35), house factor
-    /// included.
+    /// Size factor from the room's own words such as "small" (0.8) or "spacious" (1.35);
+    /// in a house, the house's factor is [`super::Reading::size_scale`].
     pub size_scale: f64,
     /// Styles and themes of the whole room ("Star Wars", "Art Deco").
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -137,6 +137,8 @@ pub(crate) struct Structure {
     pub density: Option<Density>,
     /// The first sentence is the room list (its phrases are rooms, not objects).
     pub list_sentence: bool,
+    /// What the reader capped, in words for the user.
+    pub notes: Vec<String>,
 }
 
 fn ordinal_word(n: u32) -> &'static str {
@@ -340,6 +342,7 @@ fn single_room(lex: &Lexicon, first: &[Chunk], sentences: &[Vec<Chunk>]) -> Stru
         styles: Vec::new(),
         density: None,
         list_sentence: false,
+        notes: Vec::new(),
     }
 }
 
@@ -358,6 +361,7 @@ fn house_from_list(
         .map(|(np, _)| np.number.unwrap_or(1).max(1))
         .sum();
     let mut rooms: Vec<RoomReading> = Vec::new();
+    let mut notes: Vec<String> = Vec::new();
     if listed_count == 1
         && let Some(np) = head_np
         && let Head::Room { key, words } = &np.head
@@ -374,16 +378,17 @@ fn house_from_list(
             made.push(Vec::new());
             continue;
         };
-        let n = np.number.unwrap_or(1).max(1);
+        let n = capped(np.number.unwrap_or(1).max(1), words, &mut notes);
         let mut ids = Vec::new();
         match parent.and_then(|p| made.get(p).cloned()) {
             Some(parents) if !parents.is_empty() => {
                 // One child per parent room ("four guest bedrooms with en-suite bathrooms").
                 for p in parents {
                     let pname = rooms[p].name.clone();
-                    let mut r = RoomReading::new(key, words, format!("{words} of {pname}"));
+                    let mut r =
+                        RoomReading::new(&child_type(key), words, format!("{words} of {pname}"));
                     r.parent = Some(p);
-                    r.size_scale = size_scale * size_of(lex, np);
+                    r.size_scale = size_of(lex, np);
                     ids.push(rooms.len());
                     rooms.push(r);
                 }
@@ -400,7 +405,7 @@ fn house_from_list(
                     };
                     let mut r = RoomReading::new(key, words, name);
                     r.ordinal = (n > 1).then_some(k + 1);
-                    r.size_scale = size_scale * size_of(lex, np);
+                    r.size_scale = size_of(lex, np);
                     r.styles = np.attrs.styles.clone();
                     ids.push(rooms.len());
                     rooms.push(r);
@@ -408,6 +413,26 @@ fn house_from_list(
             }
         }
         made.push(ids);
+    }
+    // "A bedroom with a bathroom": the head room's own bathroom.
+    let head_private = rooms.len() == 2
+        && listed_count == 1
+        && crate::knowledge::knowledge()
+            .room(&rooms[0].room_type)
+            .is_some_and(|r| r.role == crate::knowledge::rooms::Role::Private);
+    if head_private && rooms[1].parent.is_none() && child_type(&rooms[1].room_type) == "en_suite" {
+        rooms[1].room_type = "en_suite".to_string();
+        rooms[1].parent = Some(0);
+    }
+    if rooms.len() > MAX_ROOMS {
+        notes.push(format!(
+            "{} rooms asked for, {MAX_ROOMS} built: a house has at most {MAX_ROOMS} rooms",
+            rooms.len()
+        ));
+        rooms.truncate(MAX_ROOMS);
+        for r in &mut rooms {
+            r.parent = r.parent.filter(|&p| p < MAX_ROOMS);
+        }
     }
     unique_names(&mut rooms);
     // "A small dental office with ...": the words before the list, without determiners and
@@ -436,6 +461,7 @@ fn house_from_list(
         styles: Vec::new(),
         density: None,
         list_sentence: true,
+        notes,
     }
 }
 
@@ -468,8 +494,14 @@ fn add_subject_rooms(lex: &Lexicon, sentences: &[Vec<Chunk>], st: &mut Structure
             st.rooms[0].size_scale = scale * size_of(lex, np);
             continue;
         }
-        let n = np.number.unwrap_or(1).max(1).min(MAX_SUBJECT_ROOMS);
+        let n = capped(np.number.unwrap_or(1).max(1), words, &mut st.notes);
         for k in 0..n {
+            if st.rooms.len() >= MAX_ROOMS {
+                st.notes.push(format!(
+                    "{words}: not built, a house has at most {MAX_ROOMS} rooms"
+                ));
+                break;
+            }
             let name = if n > 1 {
                 format!("{words} {}", k + 1)
             } else {
@@ -488,8 +520,35 @@ fn add_subject_rooms(lex: &Lexicon, sentences: &[Vec<Chunk>], st: &mut Structure
     }
 }
 
-/// Most rooms one subject phrase adds ("Two bathrooms have ...").
-const MAX_SUBJECT_ROOMS: u32 = 20;
+/// Most rooms one phrase adds ("forty offices" gives 20; the rest is reported).
+pub const MAX_PER_PHRASE: u32 = 20;
+/// Most rooms of a house; the rest of a longer list is left out (and reported).
+pub const MAX_ROOMS: usize = 40;
+
+/// Rooms a phrase asks for, capped, with a note when the cap cut it.
+fn capped(n: u32, words: &str, notes: &mut Vec<String>) -> u32 {
+    if n > MAX_PER_PHRASE {
+        notes.push(format!(
+            "{n} {words}s asked for, {MAX_PER_PHRASE} built: one phrase adds at most {MAX_PER_PHRASE} rooms"
+        ));
+        return MAX_PER_PHRASE;
+    }
+    n
+}
+
+/// The room type of a room listed as another room's own ("four bedrooms with en-suite
+/// bathrooms"): a wet room becomes that room's en-suite.
+fn child_type(key: &str) -> String {
+    let reg = crate::knowledge::knowledge();
+    let wet = reg
+        .room(key)
+        .is_some_and(|r| r.role == crate::knowledge::rooms::Role::Wet);
+    if wet && reg.room("en_suite").is_some() {
+        "en_suite".to_string()
+    } else {
+        key.to_string()
+    }
+}
 
 /// Names stay unique: a second "bathroom" listed separately becomes "bathroom 2".
 fn unique_names(rooms: &mut [RoomReading]) {

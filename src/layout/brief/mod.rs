@@ -1,29 +1,25 @@
 //! From a prompt to a house brief: which rooms (with counts and en-suite owners), the text
 //! about each room, house-wide style, size words, wall height, materials and open connections.
 //!
-//! This is the layout's adapter onto prompt reading. It works on the prompt's own sentences:
-//! the first sentence lists the rooms ("A dental office with a reception, two exam rooms, ...");
-//! later sentences and clauses are attributed to the room they start with ("The first exam
-//! room has ..."), or, when they name no room, to the room their objects belong in (a dining
-//! table goes to the kitchen when there is no dining room). A prompt that names one room is a
-//! one-room house whose text is the whole prompt. It does not size rooms or decide how they
-//! connect ([`super::spec`] does).
+//! The rooms and the clauses about each come from the prompt reader ([`crate::prompt::read`]),
+//! the one place that decides whether a prompt is a house and which room a sentence is about;
+//! this module adds what the layout needs beyond that (materials, ceiling height, open
+//! connections, sentences about the whole house). A prompt that names one room is a one-room
+//! house whose text is the whole prompt. It does not size rooms or decide how they connect
+//! ([`super::spec`] does).
 
 use serde::{Deserialize, Serialize};
 
 mod words;
 
-use super::knowledge::{self, Role, knowledge};
-use crate::prompt::singular;
-use words::{
-    Clause, Mention, Tok, clauses, count_before, determiner_before, house_wide, materials_in,
-    mentions, ordinal_before, sentences, size_before, size_word, tokens, wall_height_in,
-};
+use super::knowledge::knowledge;
+use crate::prompt::{Reading, Scope};
+use words::{house_wide, materials_in, sentences, size_word, tokens, wall_height_in};
 
 /// Most rooms one phrase adds ("forty offices" gives 20).
-pub const MAX_PER_MENTION: usize = 20;
+pub const MAX_PER_MENTION: usize = crate::prompt::rooms::MAX_PER_PHRASE as usize;
 /// Most rooms of a house; the rest of a longer list is left out (and reported).
-pub const MAX_ROOMS: usize = 40;
+pub const MAX_ROOMS: usize = crate::prompt::rooms::MAX_ROOMS;
 
 /// One room the prompt asks for.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -77,403 +73,215 @@ pub struct HouseBrief {
     pub left_out: usize,
 }
 
-/// Index of the room an object noun in `toks` belongs in, by the item table.
-fn room_for_items(toks: &[Tok], rooms: &[RoomRequest]) -> Option<usize> {
-    let items = &knowledge().house().items_to_rooms;
-    for i in 0..toks.len() {
-        for n in [2usize, 1] {
-            if i + n > toks.len() {
-                continue;
-            }
-            let mut words: Vec<String> = toks[i..i + n].iter().map(|t| t.w.clone()).collect();
-            if let Some(last) = words.last_mut() {
-                *last = singular(last);
-            }
-            if let Some(types) = items.get(&words.join(" ")) {
-                for ty in types {
-                    if let Some(r) = rooms.iter().position(|r| &r.room_type == ty) {
-                        return Some(r);
-                    }
-                }
-            }
-        }
-    }
-    None
-}
-
-/// The room most visitors are in: the entry, else the first passable room, else the first.
-fn main_room(rooms: &[RoomRequest]) -> usize {
-    let role = |r: &RoomRequest| knowledge::kind(&r.room_type).role;
-    rooms
-        .iter()
-        .position(|r| role(r) == Role::Entry)
-        .or_else(|| rooms.iter().position(|r| matches!(role(r), Role::Public)))
-        .unwrap_or(0)
-}
-
-/// Where a room is listed: its tokens and the room instances it expands to.
-struct Listed {
-    mention: Mention,
-    count: usize,
-    owner_of: Option<usize>,
-}
-
-/// Reads the room list of the first sentence: `(head byte end, listed rooms)`.
-fn room_list(text: &str, s0: (usize, usize)) -> (usize, Vec<Listed>, Vec<Mention>) {
-    let toks = tokens(text, s0.0, s0.1);
-    let split = toks.iter().position(|t| {
-        matches!(
-            t.w.as_str(),
-            "with" | "containing" | "featuring" | "comprising" | "including" | "has" | "contains"
-        )
-    });
-    let head_end = split.map(|i| toks[i].start).unwrap_or(s0.1);
-    let ms = mentions(&toks);
-    let (head, list): (Vec<Mention>, Vec<Mention>) = ms
-        .into_iter()
-        .partition(|m| split.is_none_or(|s| m.first < s));
-    let mut listed: Vec<Listed> = Vec::new();
-    for m in list {
-        // "the room", "the kitchen" in the list refer to a room, they do not add one.
-        let det = determiner_before(&toks, m.first);
-        if m.room_type == "room" || det.is_some() {
-            continue;
-        }
-        let kind = knowledge::kind(&m.room_type);
-        let after_with = m.first > 0
-            && (m.first.saturating_sub(4)..m.first).any(|i| toks[i].w == "with")
-            && !(m.first.saturating_sub(4)..m.first).any(|i| toks[i].w == "and");
-        let prev_private = listed
-            .last()
-            .map(|l| knowledge::kind(&l.mention.room_type).role == Role::Private)
-            .unwrap_or(false);
-        if kind.role == Role::Wet && after_with && prev_private && !listed.is_empty() {
-            // "four guest bedrooms with en-suite bathrooms": one each, owned by the bedroom.
-            let owner = listed.len() - 1;
-            let n = listed[owner].count;
-            let mut m = m;
-            m.room_type = "en_suite".into();
-            listed.push(Listed {
-                count: count_before(&toks, m.first)
-                    .filter(|c| *c <= n)
-                    .unwrap_or(n),
-                mention: m,
-                owner_of: Some(owner),
-            });
-            continue;
-        }
-        let count = count_before(&toks, m.first)
-            .unwrap_or(if m.plural { 2 } else { 1 })
-            .min(MAX_PER_MENTION);
-        if count == 0 {
-            continue;
-        }
-        listed.push(Listed {
-            mention: m,
-            count,
-            owner_of: None,
-        });
-    }
-    (head_end, listed, head)
-}
-
-/// Reads the house brief of a prompt.
+/// Reads the house brief of a prompt through the prompt reader ([`crate::prompt::read`]).
 pub fn read(prompt: &str) -> HouseBrief {
+    from_reading(prompt, &crate::prompt::read(prompt))
+}
+
+/// The brief of a prompt the reader has read: its rooms (counts expanded, en-suites with
+/// their owners), the text about each, and what the text says about the whole house
+/// (materials, ceiling height, open connections, clauses "throughout").
+pub fn from_reading(prompt: &str, reading: &Reading) -> HouseBrief {
     let text = prompt.trim();
     let sents = sentences(text);
-    let first = sents.first().copied().unwrap_or((0, text.len()));
-    let (head_end, listed, head_mentions) = room_list(text, first);
-    let head_toks = tokens(text, first.0, head_end);
     let k = knowledge();
-    let head_has_house_noun = head_toks
-        .iter()
-        .any(|t| k.house().house_nouns.contains(&t.w));
-    let listed_total: usize = listed.iter().map(|l| l.count).sum();
-    let head_room = head_mentions
-        .iter()
-        .find(|m| m.room_type != "room" || head_mentions.len() == 1)
-        .cloned();
-
     let mut brief = HouseBrief {
         prompt: prompt.to_string(),
         head: String::new(),
-        is_house: false,
+        is_house: reading.scope == Scope::House,
         rooms: Vec::new(),
-        style: head_toks
-            .iter()
-            .filter(|t| k.house().style_words.contains(&t.w))
-            .map(|t| t.w.clone())
-            .collect(),
+        style: Vec::new(),
         house_text: Vec::new(),
         size_scale: 1.0,
         wall_height: None,
         open_pairs: Vec::new(),
         floor_material: None,
         wall_material: None,
-        left_out: 0,
+        left_out: reading
+            .notes
+            .iter()
+            .filter_map(|n| {
+                let (asked, rest) = n.split_once(' ')?;
+                let built: usize = rest.split(", ").nth(1)?.split(' ').next()?.parse().ok()?;
+                asked.parse::<usize>().ok().map(|a| a.saturating_sub(built))
+            })
+            .sum(),
     };
-
-    let add =
-        |brief: &mut HouseBrief, m: &Mention, count: usize, owner: Option<usize>, size: f64| {
-            let first_index = brief.rooms.len();
-            let room_left = MAX_ROOMS.saturating_sub(first_index);
-            brief.left_out += count.saturating_sub(room_left);
-            for i in 0..count.min(room_left) {
-                // An en-suite whose bedroom was left out is left out too.
-                let owner = match owner {
-                    Some(o) if o + i >= first_index => {
-                        brief.left_out += 1;
-                        continue;
-                    }
-                    o => o.map(|o| o + i),
-                };
-                brief.rooms.push(RoomRequest {
-                    room_type: m.room_type.clone(),
-                    label: if m.room_type == "en_suite" {
-                        "en-suite bathroom".into()
-                    } else {
-                        m.label.clone()
-                    },
-                    ordinal: [i + 1, count],
-                    text: Vec::new(),
-                    size_scale: size,
-                    owner,
-                    floor_material: None,
-                    wall_material: None,
-                });
-            }
-            first_index
-        };
-
-    let house =
-        listed_total >= 2 || (listed_total == 1 && (head_room.is_some() || head_has_house_noun));
-    if !house {
-        // One room: its type is the first room word of the prompt (any sentence).
-        let all = tokens(text, 0, text.len());
-        let m = head_room.or_else(|| mentions(&all).into_iter().find(|m| m.room_type != "room"));
-        let m = m.unwrap_or(Mention {
-            room_type: "room".into(),
-            first: 0,
-            last: 0,
-            plural: false,
-            label: "room".into(),
+    for &(s, e) in &sents {
+        if let Some(h) = wall_height_in(&tokens(text, s, e)) {
+            brief.wall_height = Some(h);
+        }
+    }
+    // Ordinals among rooms with the same words ("exam room" 2 of 4).
+    let same_words = |i: usize| {
+        let w = &reading.rooms[i].words;
+        let all: Vec<usize> = (0..reading.rooms.len())
+            .filter(|&j| reading.rooms[j].words == *w && reading.rooms[j].parent.is_none())
+            .collect();
+        let pos = all.iter().position(|&j| j == i).map_or(1, |p| p + 1);
+        [pos, all.len().max(1)]
+    };
+    for (i, r) in reading.rooms.iter().enumerate() {
+        let en_suite = r.room_type == "en_suite";
+        brief.rooms.push(RoomRequest {
+            room_type: r.room_type.clone(),
+            label: if en_suite {
+                "en-suite bathroom".to_string()
+            } else {
+                r.words.clone()
+            },
+            ordinal: if r.parent.is_some() {
+                [1, 1]
+            } else {
+                same_words(i)
+            },
+            text: Vec::new(),
+            size_scale: r.size_scale,
+            owner: r.parent,
+            floor_material: None,
+            wall_material: None,
         });
-        let size = size_before(&head_toks, head_toks.len()).unwrap_or(1.0);
-        add(&mut brief, &m, 1, None, size);
+    }
+    if brief.rooms.is_empty() {
+        brief.rooms.push(RoomRequest {
+            room_type: "room".into(),
+            label: "room".into(),
+            ordinal: [1, 1],
+            text: Vec::new(),
+            size_scale: 1.0,
+            owner: None,
+            floor_material: None,
+            wall_material: None,
+        });
+    }
+    if !brief.is_house {
         brief.rooms[0].text.push(text.to_string());
+        brief.rooms[0].size_scale = reading.size_scale;
         for &(s, e) in &sents {
-            let toks = tokens(text, s, e);
-            if let Some(h) = wall_height_in(&toks) {
-                brief.wall_height = Some(h);
-            }
-            let (f, w) = materials_in(&toks);
+            let (f, w) = materials_in(&tokens(text, s, e));
             brief.rooms[0].floor_material = f.or(brief.rooms[0].floor_material.take());
             brief.rooms[0].wall_material = w.or(brief.rooms[0].wall_material.take());
         }
         return brief;
     }
-
-    brief.is_house = true;
+    let first = sents.first().copied().unwrap_or((0, text.len()));
+    let head_toks = tokens(text, first.0, first.1);
     brief.size_scale = head_toks
         .iter()
+        .take_while(|t| !matches!(t.w.as_str(), "with" | "includes" | "has" | "features"))
         .find_map(|t| size_word(&t.w))
         .map(|s| if s < 1.0 { 0.9 } else { 1.12 })
         .unwrap_or(1.0);
-    brief.head = text[first.0..head_end]
-        .trim()
-        .trim_end_matches(',')
-        .to_string();
-    // A head that is itself a room ("A bedroom with an en-suite bathroom") is the first room.
-    let first_toks = tokens(text, first.0, first.1);
-    let mut starts: Vec<usize> = Vec::new();
-    if listed_total == 1
-        && let Some(m) = &head_room
-        && !head_has_house_noun
-    {
-        let size = size_before(&first_toks, m.first).unwrap_or(1.0);
-        add(&mut brief, m, 1, None, size);
-        starts.push(0);
-    }
-    let head_added = starts.len();
-    for l in &listed {
-        let mut mention = l.mention.clone();
-        let mut owner = l.owner_of.and_then(|o| starts.get(head_added + o).copied());
-        // "A bedroom with a bathroom": the bathroom is the bedroom's en-suite.
-        if head_added == 1
-            && owner.is_none()
-            && knowledge::kind(&mention.room_type).role == Role::Wet
-            && knowledge::kind(&brief.rooms[0].room_type).role == Role::Private
-        {
-            mention.room_type = "en_suite".into();
-            owner = Some(0);
-        }
-        let size = size_before(&first_toks, l.mention.first).unwrap_or(1.0);
-        let at = add(&mut brief, &mention, l.count, owner, size);
-        starts.push(at);
-    }
-    // "an open-plan kitchen and living room": open connections inside the list.
-    for w in listed.windows(2) {
-        let (a, b) = (&w[0].mention, &w[1].mention);
-        let between: Vec<&str> = first_toks[a.last + 1..b.first]
+    brief.head = reading
+        .house_type
+        .as_deref()
+        .filter(|h| !crate::prompt::lexicon().is_non_object(h))
+        .map(with_article)
+        .unwrap_or_default();
+    brief.style = reading.styles.clone();
+    brief.style.extend(
+        head_toks
             .iter()
-            .map(|t| t.w.as_str())
-            .collect();
-        let open_before = (a.first.saturating_sub(3)..a.first).any(|i| {
-            matches!(
-                first_toks[i].w.as_str(),
-                "open-plan" | "open" | "open-concept"
-            )
-        });
-        if open_before && between.contains(&"and") && between.len() <= 3 {
-            let ia = brief.rooms.iter().position(|r| r.label == a.label);
-            let ib = brief.rooms.iter().position(|r| r.label == b.label);
-            if let (Some(ia), Some(ib)) = (ia, ib) {
-                brief.open_pairs.push((ia, ib));
-            }
-        }
-    }
-    // The first sentence may carry materials and height for the whole house.
-    if let Some(h) = wall_height_in(&first_toks) {
-        brief.wall_height = Some(h);
-    }
-
-    // Later sentences: attribute each clause.
-    let mut last_subject: Option<usize> = None;
+            .filter(|t| k.house().style_words.contains(&t.w))
+            .map(|t| t.w.clone()),
+    );
+    // Sentences about the whole house ("The floors are hardwood throughout.").
+    let mut house_wide_texts: Vec<String> = Vec::new();
     for &(s, e) in sents.iter().skip(1) {
-        for clause in clauses(text, s, e) {
-            attribute(&mut brief, text, &clause, &mut last_subject);
+        let toks = tokens(text, s, e);
+        if house_wide(&toks) {
+            let (f, w) = materials_in(&toks);
+            brief.floor_material = f.or(brief.floor_material.take());
+            brief.wall_material = w.or(brief.wall_material.take());
+            let t = text[s..e].trim().to_string();
+            brief.style.extend(
+                toks.iter()
+                    .filter(|t| k.house().style_words.contains(&t.w))
+                    .map(|t| t.w.clone()),
+            );
+            house_wide_texts.push(t.trim_end_matches(['.', '!', '?', ';']).to_string());
+            brief.house_text.push(t);
         }
     }
+    // Each room's own clauses, as the reader attributed them.
+    for (i, r) in reading.rooms.iter().enumerate() {
+        for part in r
+            .text
+            .split(" ... ")
+            .map(str::trim)
+            .filter(|p| !p.is_empty())
+        {
+            let bare = part.trim_end_matches(['.', '!', '?', ';']);
+            if house_wide_texts.iter().any(|h| h.contains(bare)) {
+                continue;
+            }
+            let toks = tokens(part, 0, part.len());
+            let (f, w) = materials_in(&toks);
+            let room = &mut brief.rooms[i];
+            room.floor_material = f.or(room.floor_material.take());
+            room.wall_material = w.or(room.wall_material.take());
+            room.text.push(capitalise(part));
+        }
+    }
+    brief.open_pairs = open_pairs(text, &sents, &brief.rooms);
     brief
 }
 
-/// The room a mention in a later sentence refers to.
-fn resolve(brief: &HouseBrief, toks: &[Tok], m: &Mention, subject: Option<usize>) -> Option<usize> {
-    let det = determiner_before(toks, m.first);
-    if det.as_deref() == Some("its")
-        && let Some(owner) = subject
-        && let Some(i) = brief.rooms.iter().position(|r| r.owner == Some(owner))
-    {
-        return Some(i);
-    }
-    let same: Vec<usize> = brief
-        .rooms
+/// Pairs of rooms the prompt opens to each other: "an open-plan kitchen and living room",
+/// "the kitchen is open to the dining room", "opens onto the terrace".
+fn open_pairs(text: &str, sents: &[(usize, usize)], rooms: &[RoomRequest]) -> Vec<(usize, usize)> {
+    let mut out: Vec<(usize, usize)> = Vec::new();
+    let labels: Vec<Vec<String>> = rooms
         .iter()
-        .enumerate()
-        .filter(|(_, r)| r.room_type == m.room_type || r.label == m.label)
-        .map(|(i, _)| i)
+        .map(|r| r.label.split(' ').map(str::to_string).collect())
         .collect();
-    // A bathroom mentioned in a house with only en-suites, etc.: same role as a fallback.
-    let same = if same.is_empty() && m.room_type == "bathroom" {
-        brief
-            .rooms
-            .iter()
-            .enumerate()
-            .filter(|(_, r)| r.room_type == "en_suite")
-            .map(|(i, _)| i)
-            .collect()
-    } else {
-        same
-    };
-    if same.is_empty() {
-        return None;
-    }
-    match ordinal_before(toks, m.first) {
-        Some(usize::MAX) => same.last().copied(),
-        Some(n) => same.get(n - 1).or(same.last()).copied(),
-        None => same
-            .iter()
-            .copied()
-            .find(|&i| brief.rooms[i].text.is_empty())
-            .or(same.first().copied()),
-    }
-}
-
-fn attribute(
-    brief: &mut HouseBrief,
-    text: &str,
-    clause: &Clause,
-    last_subject: &mut Option<usize>,
-) {
-    let toks = &clause.toks;
-    let body = text[clause.start..clause.end]
-        .trim()
-        .trim_start_matches([',', ';'])
-        .trim();
-    let body = body
-        .strip_prefix("and ")
-        .or_else(|| body.strip_prefix("And "))
-        .unwrap_or(body)
-        .trim()
-        .to_string();
-    let ms: Vec<Mention> = mentions(toks)
-        .into_iter()
-        .filter(|m| m.room_type != "room" || toks.len() < 4)
-        .collect();
-    let (floor, wall) = materials_in(toks);
-    if let Some(h) = wall_height_in(toks) {
-        brief.wall_height = Some(h);
-    }
-    // Subject: a room word in the first few words; else any room word; else by objects.
-    let subject = ms
-        .iter()
-        .find(|m| m.first <= 3)
-        .and_then(|m| resolve(brief, toks, m, *last_subject));
-    if subject.is_none() && house_wide(toks) {
-        brief.floor_material = floor.or(brief.floor_material.take());
-        brief.wall_material = wall.or(brief.wall_material.take());
-        brief.style.extend(
-            toks.iter()
-                .filter(|t| knowledge().house().style_words.contains(&t.w))
-                .map(|t| t.w.clone()),
-        );
-        brief.house_text.push(body);
-        return;
-    }
-    let target = subject
-        .or_else(|| {
-            ms.iter()
-                .find_map(|m| resolve(brief, toks, m, *last_subject))
-        })
-        .or_else(|| room_for_items(toks, &brief.rooms))
-        .unwrap_or_else(|| main_room(&brief.rooms));
-    // "The kitchen is open to the dining room", "opens onto the living room".
-    let w: Vec<&str> = toks.iter().map(|t| t.w.as_str()).collect();
-    let opens = w.windows(2).any(|p| {
-        matches!(p[0], "open" | "opens" | "open-plan")
-            && matches!(p[1], "to" | "onto" | "into" | "with")
-    });
-    if opens {
-        for m in ms.iter().skip(1) {
-            if let Some(other) = resolve(brief, toks, m, *last_subject)
-                && other != target
-                && !brief.open_pairs.contains(&(target, other))
-            {
-                brief.open_pairs.push((target, other));
+    for &(s, e) in sents {
+        let toks = tokens(text, s, e);
+        let w: Vec<String> = toks.iter().map(|t| crate::prompt::singular(&t.w)).collect();
+        // Room labels in this sentence, by token position.
+        let mut found: Vec<(usize, usize)> = Vec::new();
+        for i in 0..w.len() {
+            for (r, l) in labels.iter().enumerate() {
+                if l.is_empty() || i + l.len() > w.len() {
+                    continue;
+                }
+                if w[i..i + l.len()] == l[..] && !found.iter().any(|&(_, x)| x == r) {
+                    found.push((i, r));
+                    break;
+                }
+            }
+        }
+        found.sort();
+        let open_word = |i: usize| {
+            matches!(
+                toks[i].w.as_str(),
+                "open-plan" | "open-concept" | "open" | "opens"
+            )
+        };
+        for pair in found.windows(2) {
+            let ((ia, a), (ib, b)) = (pair[0], pair[1]);
+            if ia + labels[a].len() > ib {
+                continue;
+            }
+            let before_a = (ia.saturating_sub(3)..ia).any(open_word);
+            let between: Vec<&str> = w[ia + labels[a].len()..ib]
+                .iter()
+                .map(String::as_str)
+                .collect();
+            let plan = before_a && between.contains(&"and") && between.len() <= 3;
+            let opens = between
+                .iter()
+                .any(|x| matches!(*x, "open" | "opens" | "open-plan"))
+                && between
+                    .iter()
+                    .any(|x| matches!(*x, "to" | "onto" | "into" | "with"));
+            let (a, b) = (a.min(b), a.max(b));
+            if (plan || opens) && a != b && !out.contains(&(a, b)) {
+                out.push((a, b));
             }
         }
     }
-    // Size words right after the subject ("The kitchen is large").
-    if let Some(m) = ms.iter().find(|m| m.first <= 3)
-        && toks
-            .get(m.last + 1)
-            .is_some_and(|t| matches!(t.w.as_str(), "is" | "feels"))
-        && let Some(s) = toks.get(m.last + 2).and_then(|t| size_word(&t.w))
-    {
-        brief.rooms[target].size_scale = s;
-    }
-    let room = &mut brief.rooms[target];
-    room.floor_material = floor.or(room.floor_material.take());
-    room.wall_material = wall.or(room.wall_material.take());
-    let mut body = body;
-    if let Some(c) = body.chars().next() {
-        let upper: String = c.to_uppercase().collect();
-        body.replace_range(..c.len_utf8(), &upper);
-    }
-    room.text.push(body);
-    if subject.is_some() && room.owner.is_none() {
-        *last_subject = Some(target);
-    }
+    out
 }
 
 /// Article for a label ("an exam room", "a bedroom").

@@ -1,15 +1,14 @@
-//! Words of a prompt for the brief: tokens with byte offsets, sentences and clauses, room
-//! mentions with their counts, ordinals and size words, and the materials and ceiling heights
-//! a clause names.
+//! Words of a prompt for the brief: sentences, size words, the clauses about the whole house,
+//! and the materials and ceiling heights a clause names. Rooms and what belongs to them are the
+//! prompt reader's ([`crate::prompt::read`]); this module only reads the architectural words the
+//! reader does not model.
 
 use crate::layout::knowledge::{knowledge, material_word, room_words};
-use crate::prompt::singular;
 
-/// A lower-case word with its byte range in the prompt.
+/// A lower-case word of the prompt.
 #[derive(Debug, Clone)]
 pub(super) struct Tok {
     pub(super) w: String,
-    pub(super) start: usize,
 }
 
 /// Words of `text[from..to]` as [`crate::prompt::tokenize`] splits them, with byte offsets.
@@ -23,10 +22,8 @@ pub(super) fn tokens(text: &str, from: usize, to: usize) -> Vec<Tok> {
         if trimmed.is_empty() {
             return;
         }
-        let lead = raw.len() - raw.trim_start_matches('-').len();
         out.push(Tok {
             w: trimmed.to_lowercase(),
-            start: s + lead,
         });
     };
     for (i, c) in slice.char_indices() {
@@ -83,240 +80,12 @@ pub(super) fn sentences(text: &str) -> Vec<(usize, usize)> {
     out
 }
 
-pub(super) fn number_word(w: &str) -> Option<usize> {
-    const WORDS: [&str; 21] = [
-        "zero",
-        "one",
-        "two",
-        "three",
-        "four",
-        "five",
-        "six",
-        "seven",
-        "eight",
-        "nine",
-        "ten",
-        "eleven",
-        "twelve",
-        "thirteen",
-        "fourteen",
-        "fifteen",
-        "sixteen",
-        "seventeen",
-        "eighteen",
-        "nineteen",
-        "twenty",
-    ];
-    if let Some(i) = WORDS.iter().position(|x| *x == w) {
-        return Some(i);
-    }
-    match w {
-        "a" | "an" | "single" | "another" => Some(1),
-        "pair" | "couple" | "both" | "twin" => Some(2),
-        _ => w.parse::<usize>().ok().filter(|n| *n <= 40),
-    }
-}
-
-pub(super) fn ordinal_word(w: &str) -> Option<usize> {
-    const WORDS: [&str; 10] = [
-        "first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth", "ninth",
-        "tenth",
-    ];
-    WORDS
-        .iter()
-        .position(|x| *x == w)
-        .map(|i| i + 1)
-        .or(match w {
-            "1st" => Some(1),
-            "2nd" => Some(2),
-            "3rd" => Some(3),
-            "4th" => Some(4),
-            "5th" => Some(5),
-            "last" => Some(usize::MAX),
-            _ => None,
-        })
-}
-
 pub(super) fn size_word(w: &str) -> Option<f64> {
     match w {
         "tiny" | "small" | "compact" | "little" | "cozy" | "cosy" | "narrow" => Some(0.8),
         "large" | "big" | "spacious" | "huge" | "grand" | "generous" | "wide" => Some(1.25),
         _ => None,
     }
-}
-
-/// A room word found in the text.
-#[derive(Debug, Clone)]
-pub(super) struct Mention {
-    pub(super) room_type: String,
-    /// Token range of the words.
-    pub(super) first: usize,
-    pub(super) last: usize,
-    pub(super) plural: bool,
-    pub(super) label: String,
-}
-
-/// Room words in `toks`, longest match first, skipping modifiers ("bar counter").
-pub(super) fn mentions(toks: &[Tok]) -> Vec<Mention> {
-    let k = knowledge();
-    let mut out = Vec::new();
-    let mut i = 0;
-    while i < toks.len() {
-        let mut found = None;
-        for (words, ty) in room_words() {
-            let n = words.len();
-            if i + n > toks.len() {
-                continue;
-            }
-            let head_ok = (0..n - 1).all(|j| toks[i + j].w == words[j]);
-            let last = &toks[i + n - 1].w;
-            let sing = singular(last);
-            if !head_ok || (*last != words[n - 1] && sing != words[n - 1]) {
-                continue;
-            }
-            if let Some(next) = toks.get(i + n) {
-                let nw = singular(&next.w);
-                if k.house()
-                    .not_room_after
-                    .iter()
-                    .any(|x| *x == next.w || *x == nw)
-                {
-                    continue;
-                }
-            }
-            let label = words.join(" ");
-            found = Some(Mention {
-                room_type: ty.clone(),
-                first: i,
-                last: i + n - 1,
-                plural: *last != words[n - 1],
-                label,
-            });
-            break;
-        }
-        match found {
-            Some(m) => {
-                i = m.last + 1;
-                out.push(m);
-            }
-            None => i += 1,
-        }
-    }
-    out
-}
-
-pub(super) const STOP: [&str; 9] = ["and", "with", "of", "the", "its", "their", "or", "in", "to"];
-
-/// Count written before the mention at token `at` ("two exam rooms"); `None` when there is
-/// no number word (a bare plural, or "the kitchen").
-pub(super) fn count_before(toks: &[Tok], at: usize) -> Option<usize> {
-    for i in (at.saturating_sub(3)..at).rev() {
-        let w = toks[i].w.as_str();
-        if let Some(n) = number_word(w) {
-            return Some(n);
-        }
-        if STOP.contains(&w) {
-            return None;
-        }
-    }
-    None
-}
-
-pub(super) fn determiner_before(toks: &[Tok], at: usize) -> Option<String> {
-    for i in (at.saturating_sub(3)..at).rev() {
-        let w = toks[i].w.as_str();
-        if matches!(
-            w,
-            "the" | "its" | "their" | "this" | "that" | "each" | "every"
-        ) {
-            return Some(w.to_string());
-        }
-        if number_word(w).is_some() || matches!(w, "and" | "with" | "of" | "in") {
-            return None;
-        }
-    }
-    None
-}
-
-pub(super) fn ordinal_before(toks: &[Tok], at: usize) -> Option<usize> {
-    for i in (at.saturating_sub(3)..at).rev() {
-        if let Some(n) = ordinal_word(&toks[i].w) {
-            return Some(n);
-        }
-        if STOP.contains(&toks[i].w.as_str()) && toks[i].w != "the" {
-            return None;
-        }
-    }
-    None
-}
-
-pub(super) fn size_before(toks: &[Tok], at: usize) -> Option<f64> {
-    (at.saturating_sub(3)..at)
-        .rev()
-        .find_map(|i| size_word(&toks[i].w))
-}
-
-pub(super) const VERBS: [&str; 20] = [
-    "has", "have", "contains", "contain", "features", "feature", "includes", "include", "holds",
-    "hold", "is", "are", "offers", "gets", "comes", "houses", "displays", "provides", "opens",
-    "should",
-];
-
-/// A clause: its byte range and the token index range inside its sentence's tokens.
-#[derive(Debug, Clone)]
-pub(super) struct Clause {
-    pub(super) start: usize,
-    pub(super) end: usize,
-    pub(super) toks: Vec<Tok>,
-}
-
-/// Splits a sentence into clauses where a new subject room starts ("... and its bathroom has
-/// ...", "...; the kitchen has ...").
-pub(super) fn clauses(text: &str, start: usize, end: usize) -> Vec<Clause> {
-    let toks = tokens(text, start, end);
-    let ms = mentions(&toks);
-    let mut cuts = vec![start];
-    for m in &ms {
-        if m.first == 0 {
-            continue;
-        }
-        let verb_after = toks
-            .get(m.last + 1)
-            .is_some_and(|t| VERBS.contains(&t.w.as_str()));
-        // Walk back over an ordinal to the determiner.
-        let mut d = m.first - 1;
-        if ordinal_word(&toks[d].w).is_some() && d > 0 {
-            d -= 1;
-        }
-        let det = matches!(toks[d].w.as_str(), "the" | "its" | "their");
-        let joined = d > 0 && matches!(toks[d - 1].w.as_str(), "and" | "while" | "whereas" | "but");
-        if verb_after && det && (joined || d == 0) {
-            let cut = if joined {
-                toks[d - 1].start
-            } else {
-                toks[d].start
-            };
-            if cut > start {
-                cuts.push(cut);
-            }
-        }
-    }
-    cuts.push(end);
-    cuts.dedup();
-    cuts.windows(2)
-        .filter_map(|w| {
-            let (s, e) = (w[0], w[1]);
-            let toks = tokens(text, s, e);
-            if toks.is_empty() {
-                return None;
-            }
-            Some(Clause {
-                start: s,
-                end: e,
-                toks,
-            })
-        })
-        .collect()
 }
 
 /// Words that turn a clause into a statement about the whole house.

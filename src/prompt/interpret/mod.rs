@@ -158,6 +158,8 @@ pub(crate) struct Interp<'a> {
     last_one: Option<usize>,
     /// "Each X has ...": (first mention of the sentence, the other rooms to copy into).
     each_rooms: Option<(usize, Vec<usize>)>,
+    /// A sentence has named its room (until then, objects go where they belong).
+    focused: bool,
 }
 
 fn is_room_placement(kind: RelationKind, target: Target) -> bool {
@@ -191,6 +193,7 @@ impl<'a> Interp<'a> {
             settings_table: None,
             last_one: None,
             each_rooms: None,
+            focused: false,
         }
     }
 
@@ -208,10 +211,40 @@ impl<'a> Interp<'a> {
 
     /// Reads one sentence.
     pub fn sentence(&mut self, chunks: &[Chunk]) {
+        if self.scope == Scope::House
+            && !self.focused
+            && let Some(i) = self.room_by_items(chunks)
+        {
+            self.room = i;
+        }
         self.sentence_chunks(chunks);
         if let Some((first, rooms)) = self.each_rooms.take() {
             self.copy_to_rooms(first, &rooms);
         }
+    }
+
+    /// Before any sentence named its room: the room the sentence's objects belong in (a
+    /// dining table goes to the kitchen when the house has no dining room), by the house
+    /// table of where objects go.
+    fn room_by_items(&self, chunks: &[Chunk]) -> Option<usize> {
+        let house = crate::knowledge::rooms::registry().house();
+        if chunks
+            .iter()
+            .any(|c| matches!(&c.item, Item::Np(np) if matches!(np.head, Head::Room { .. })))
+        {
+            return None;
+        }
+        chunks.iter().find_map(|c| {
+            let Item::Np(np) = &c.item else { return None };
+            let Head::Object { canonical, .. } = &np.head else {
+                return None;
+            };
+            house.items_to_rooms.get(canonical)?.iter().find_map(|t| {
+                self.rooms
+                    .iter()
+                    .position(|r| crate::knowledge::rooms::registry().is_a(&r.room_type, t))
+            })
+        })
     }
 
     /// Copies the mentions from `first` on into each of `rooms` (references among them
@@ -485,6 +518,7 @@ impl<'a> Interp<'a> {
             }
             c.subject_is_room = true;
             c.ctx = Ctx::Room;
+            self.focused = true;
         } else if c.verb.is_none() && c.subject.is_empty() {
             c.subject_is_room = true;
         } else {
