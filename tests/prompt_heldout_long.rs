@@ -195,9 +195,8 @@ fn pct(a: usize, b: usize) -> f64 {
     }
 }
 
-#[test]
-fn reader_on_held_out_long_prompts() {
-    let text = std::fs::read_to_string("tests/fixtures/heldout_long.jsonl").unwrap();
+fn score_file(path: &str, title: &str, misses_env: &str) -> Score {
+    let text = std::fs::read_to_string(path).unwrap();
     let mut s = Score::default();
     let mut n = 0;
     for line in text.lines().filter(|l| !l.trim().is_empty()) {
@@ -209,7 +208,7 @@ fn reader_on_held_out_long_prompts() {
         check(id, kind, &r, &reqs, &mut s);
         n += 1;
     }
-    println!("reader on held-out long prompts ({n} prompts)");
+    println!("{title} ({n} prompts)");
     println!(
         "  objects met   {:4}/{:4} {:5.1}%",
         s.objects_met,
@@ -233,10 +232,30 @@ fn reader_on_held_out_long_prompts() {
         "  extra objects {:4} (planned, named by no requirement)",
         s.extra
     );
-    if std::env::var_os("HELDOUT_MISSES").is_some() {
+    if std::env::var_os(misses_env).is_some() {
         for m in &s.misses {
             println!("  miss: {m}");
         }
     }
     assert!(n >= 40, "{n} prompts");
+    s
+}
+
+#[test]
+fn reader_on_held_out_long_prompts() {
+    score_file(
+        "tests/fixtures/heldout_long.jsonl",
+        "reader on held-out long prompts",
+        "HELDOUT_MISSES",
+    );
+}
+
+/// The development set of the same kind: the one the reader may be tuned on.
+#[test]
+fn reader_on_dev_long_prompts() {
+    score_file(
+        "tests/fixtures/devlong.jsonl",
+        "reader on dev long prompts",
+        "DEVLONG_MISSES",
+    );
 }

@@ -165,6 +165,18 @@ fn suffixed_style(lex: &Lexicon, tokens: &[Token], at: usize) -> Option<Modifier
         {
             continue;
         }
+        // "this shop feels like ...": a verb before "like" makes no style.
+        let verb_before = run.last().is_some_and(|t| {
+            !t.capitalized()
+                && (lex.verb(&t.text).is_some()
+                    || (t.text.ends_with('s')
+                        && !super::wordnet::wordnet()
+                            .base_forms(&t.text, super::wordnet::Pos::Verb)
+                            .is_empty()))
+        });
+        if verb_before {
+            continue;
+        }
         // "large Pop Art style": the size word is not part of the style.
         let first = &run[0];
         if n > 1
@@ -297,6 +309,21 @@ pub(crate) fn modifier_at(
     let next_wordish = tokens
         .get(at + 1)
         .is_some_and(|u| u.is_word() && !lex.is_function_word(&u.text));
+    // WordNet's adjectives: "stylish", "somber"; one that is also a noun ("antique",
+    // "quiet") modifies when a noun follows.
+    let wn = super::wordnet::wordnet();
+    if wn.has_pos(w, super::wordnet::Pos::Adj) && !lex.is_non_object(w) {
+        let noun_too = wn.has_pos(w, super::wordnet::Pos::Noun);
+        let noun_next = next_wordish
+            && tokens.get(at + 1).is_some_and(|u| {
+                wn.has_pos(&u.text, super::wordnet::Pos::Noun)
+                    || lex.noun_at(tokens, at + 1).is_some()
+                    || kb.room_type_at(tokens, at + 1).is_some()
+            });
+        if !noun_too || noun_next {
+            return Some(single(t, ModKind::Adjective(w.to_string())));
+        }
+    }
     if w.contains('-')
         || (w.len() > 4 && w.ends_with("ed"))
         || (w.len() > 5 && w.ends_with("ing") && next_wordish)

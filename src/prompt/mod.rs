@@ -138,7 +138,7 @@ pub fn read(prompt: &str) -> Reading {
     let st = rooms::structure(lex, &toks, &chunks);
     let mut it = interpret::Interp::new(lex, &toks, st.rooms.clone(), st.scope);
     for (i, ch) in chunks.iter().enumerate() {
-        if st.list_sentence && i == 0 {
+        if st.list_sentence == Some(i) {
             // The room list; its phrases are rooms, not objects.
             continue;
         }

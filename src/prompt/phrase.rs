@@ -375,6 +375,14 @@ pub(crate) fn parse_np(
     }
     if room_len > 0 && room_len >= noun_len {
         let (mut n, key) = room.unwrap_or((0, ""));
+        // "a florist shop", "the reception hall": a second room word names the same room.
+        if let Some((n2, _)) = kb
+            .room_type_at(tokens, j + n)
+            .filter(|(n2, _)| j + n + n2 <= end)
+            && lex.noun_at(tokens, j + n).is_none_or(|(l, ..)| l <= n2)
+        {
+            n += n2;
+        }
         // "a salon floor", "the kitchen area": the space of a room type is that room.
         if j + n < end
             && word(tokens, j + n)

@@ -135,8 +135,8 @@ pub(crate) struct Structure {
     pub styles: Vec<String>,
     /// Density of the whole.
     pub density: Option<Density>,
-    /// The first sentence is the room list (its phrases are rooms, not objects).
-    pub list_sentence: bool,
+    /// The sentence that lists the rooms (its phrases are rooms, not objects).
+    pub list_sentence: Option<usize>,
     /// What the reader capped, in words for the user.
     pub notes: Vec<String>,
 }
@@ -184,40 +184,77 @@ fn zone(np: &Np) -> bool {
     matches!(&np.head, Head::Room { words, .. } if ["area", "corner", "nook", "zone", "space"].iter().any(|z| words.ends_with(z)))
 }
 
-/// The subject of a later sentence when it is a room that describes itself ("The dining room
-/// features ...", "There is also a pantry"): the room phrase and whether it comes with a verb.
-fn subject_room(chunks: &[Chunk]) -> Option<&Np> {
-    let mut k = 0;
-    // "There is/are ...", "Next, ...": skip the opener.
-    while let Some(c) = chunks.get(k) {
-        match &c.item {
-            Item::Other(w) if w == "there" || w == "next" || w == "finally" || w == "also" => {
-                k += 1
+/// Rooms a sentence introduces: a room phrase that is no preposition's object and either
+/// counts or introduces ("a mudroom by the entrance has ...", "Beyond it lie three treatment
+/// rooms") or, definite, has its own verb ("The dining room features ...", "..., while the
+/// reading room contains ..."). Generic rooms ("the room") and zones are not introduced.
+fn introduced_rooms(chunks: &[Chunk]) -> Vec<&Np> {
+    let mut out = Vec::new();
+    for (k, c) in chunks.iter().enumerate() {
+        let Item::Np(np) = &c.item else { continue };
+        if !matches!(np.head, Head::Room { .. }) || generic_room(np) || np.negated || zone(np) {
+            continue;
+        }
+        let governed = k > 0
+            && matches!(
+                chunks[k - 1].item,
+                Item::Prep(_) | Item::Of | Item::For | Item::Without | Item::SetFor
+            );
+        if governed || np.det.as_deref() == Some("possessive") {
+            continue;
+        }
+        let introduces = np.number.is_some()
+            || matches!(np.det.as_deref(), Some("indefinite" | "another"))
+            || np.plural && np.det.is_none();
+        // Skip what stands between a subject and its verb ("by the entrance").
+        let mut j = k + 1;
+        while let Some(Chunk {
+            item: Item::Prep(_),
+            ..
+        }) = chunks.get(j)
+        {
+            j += 1;
+            while matches!(chunks.get(j).map(|c| &c.item), Some(Item::Np(_))) {
+                j += 1;
             }
-            Item::Verb(class, _) if class == "locate" && k > 0 => k += 1,
-            Item::Comma => k += 1,
-            _ => break,
+        }
+        let verb_follows = matches!(
+            chunks.get(j).map(|c| &c.item),
+            Some(Item::Verb(..) | Item::With)
+        );
+        if introduces || verb_follows {
+            out.push(np.as_ref());
         }
     }
-    let there = k > 0
-        && chunks
-            .first()
-            .is_some_and(|c| matches!(&c.item, Item::Other(w) if w == "there"));
-    let Some(Chunk {
-        item: Item::Np(np), ..
-    }) = chunks.get(k)
-    else {
-        return None;
-    };
-    if !matches!(np.head, Head::Room { .. }) || generic_room(np) || np.negated {
-        return None;
+    out
+}
+
+/// The sentence, among the first few, that lists the rooms: rooms after "with", a
+/// possession verb or a colon, at least two of them ("It contains a reception hall, a
+/// breakfast room, three guest rooms and two bathrooms.").
+fn list_sentence(tokens: &[Token], sentences: &[Vec<Chunk>]) -> usize {
+    for (i, chunks) in sentences.iter().enumerate().take(3) {
+        let Some(w) = list_start(tokens, chunks) else {
+            continue;
+        };
+        let n: u32 = chunks[w + 1..]
+            .iter()
+            .filter_map(|c| match &c.item {
+                Item::Np(np)
+                    if matches!(np.head, Head::Room { .. })
+                        && !generic_room(np)
+                        && !np.is_definite() =>
+                {
+                    Some(np.number.unwrap_or(1).max(1))
+                }
+                _ => None,
+            })
+            .sum();
+        if n >= 2 {
+            return i;
+        }
     }
-    // A subject has its own verb (or "with"); after "there is" the phrase is the subject.
-    let verb_follows = matches!(
-        chunks.get(k + 1).map(|c| &c.item),
-        Some(Item::Verb(..) | Item::With)
-    );
-    (there || verb_follows).then_some(np.as_ref())
+    0
 }
 
 /// Reads the house structure: the room list of the first sentence ("A dental office with a
@@ -225,7 +262,8 @@ fn subject_room(chunks: &[Chunk]) -> Option<&Np> {
 /// then rooms that later sentences introduce as their subjects ("The dining room features
 /// ..."). `sentences` are the chunks of every sentence; `tokens` give the house name.
 pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], sentences: &[Vec<Chunk>]) -> Structure {
-    let first: &[Chunk] = sentences.first().map_or(&[], Vec::as_slice);
+    let list_at = list_sentence(tokens, sentences);
+    let first: &[Chunk] = sentences.get(list_at).map_or(&[], Vec::as_slice);
     let with_at = list_start(tokens, first);
     let head_np = first[..with_at.unwrap_or(first.len())]
         .iter()
@@ -300,7 +338,7 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], sentences: &[Vec<Chunk>
     };
     st.styles = styles;
     st.density = density;
-    st.list_sentence = is_house;
+    st.list_sentence = is_house.then_some(list_at);
     add_subject_rooms(lex, sentences, &mut st);
     st
 }
@@ -341,7 +379,7 @@ fn single_room(lex: &Lexicon, first: &[Chunk], sentences: &[Vec<Chunk>]) -> Stru
         size_scale: 1.0,
         styles: Vec::new(),
         density: None,
-        list_sentence: false,
+        list_sentence: None,
         notes: Vec::new(),
     }
 }
@@ -460,7 +498,7 @@ fn house_from_list(
         size_scale,
         styles: Vec::new(),
         density: None,
-        list_sentence: true,
+        list_sentence: None,
         notes,
     }
 }
@@ -470,16 +508,17 @@ fn house_from_list(
 /// area has ...") stay parts of their room.
 fn add_subject_rooms(lex: &Lexicon, sentences: &[Vec<Chunk>], st: &mut Structure) {
     let mut added = false;
-    for chunks in sentences.iter().skip(1) {
-        let Some(np) = subject_room(chunks) else {
-            continue;
-        };
+    let list = st.list_sentence;
+    // Sentences before the room list describe the building, not its rooms.
+    let nps = sentences
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| list.is_none_or(|l| *i > l))
+        .flat_map(|(_, chunks)| introduced_rooms(chunks));
+    for np in nps {
         let Head::Room { key, words } = &np.head else {
             continue;
         };
-        if zone(np) || np.det.as_deref() == Some("possessive") {
-            continue;
-        }
         let known = st
             .rooms
             .iter()
