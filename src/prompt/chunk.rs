@@ -240,6 +240,8 @@ pub(crate) fn chunk_sentence(
             _ => {
                 if let Some(class) = lex.verb(w) {
                     push(&mut out, Item::Verb(class.to_string(), w.to_string()), 1);
+                } else if let Some(class) = wordnet_verb(lex, tokens, i, &out) {
+                    push(&mut out, Item::Verb(class.to_string(), w.to_string()), 1);
                 } else if lex.is_negation(w) {
                     push(&mut out, Item::Without, 1);
                 } else {
@@ -250,6 +252,28 @@ pub(crate) fn chunk_sentence(
         }
     }
     out
+}
+
+/// A verb the lexicon's table does not list, after a noun phrase ("The kitchen boasts a
+/// range", "the bunk room sleeps ..."): WordNet knows the word as an inflected verb. Its class
+/// is `possess` when a noun phrase follows (what the subject has), else `locate`.
+fn wordnet_verb(lex: &Lexicon, tokens: &[Token], i: usize, out: &[Chunk]) -> Option<&'static str> {
+    let w = tokens.get(i)?.text.as_str();
+    let after_np = matches!(out.last().map(|c| &c.item), Some(Item::Np(_)));
+    let inflected = w.ends_with('s') || w.ends_with("ed");
+    if !after_np || !inflected {
+        return None;
+    }
+    let wn = super::wordnet::wordnet();
+    if wn.base_forms(w, super::wordnet::Pos::Verb).is_empty() {
+        return None;
+    }
+    let next_np = word(tokens, i + 1).is_some_and(|n| {
+        lex.determiner(n).is_some()
+            || tokens.get(i + 1).is_some_and(|t| lex.number(t).is_some())
+            || lex.quantifier_at(tokens, i + 1).is_some()
+    });
+    Some(if next_np { "possess" } else { "locate" })
 }
 
 #[cfg(test)]
