@@ -336,6 +336,7 @@ pub(crate) fn parse_np(
         which = Some("other".to_string());
     }
     // Modifiers.
+    let mods_from = j;
     while j < end {
         match modifier_at(lex, kb, tokens, j, sentence_start) {
             Some(m) if j + m.len <= end => {
@@ -479,7 +480,7 @@ pub(crate) fn parse_np(
         np.plural = plural;
         np.head = Head::Object {
             entry: Some(entry),
-            noun: written.join(" "),
+            noun: name_of(lex, tokens, mods_from, start, &written.join(" ")),
             canonical,
             head_entry: None,
         };
@@ -571,7 +572,7 @@ pub(crate) fn parse_np(
                 np.plural = plural;
                 np.head = Head::Object {
                     entry: Some(entry),
-                    noun: written.join(" "),
+                    noun: name_of(lex, tokens, mods_from, before, &written.join(" ")),
                     canonical: lex
                         .objects
                         .get(entry)
@@ -1033,4 +1034,32 @@ fn wordnet_room(lex: &Lexicon, tokens: &[Token], j: usize, end: usize) -> Option
         .and_then(|f| reg.room_type_of(&f.noun).map(str::to_string))
         .unwrap_or_else(|| "room".to_string());
     Some((key, info.lemma))
+}
+
+/// The object's name as the prompt gives it: the noun with the words before it that make it
+/// a kind ("manicure table", "sofa chair", "grand piano" — a compound WordNet knows), not
+/// its adjectives, colours or materials ("walnut desk" is a desk). `from` is where the
+/// modifiers start, `at` where the noun starts.
+fn name_of(lex: &Lexicon, tokens: &[Token], from: usize, at: usize, noun: &str) -> String {
+    let wn = super::wordnet::wordnet();
+    let mut name = noun.to_string();
+    let mut k = at;
+    while k > from {
+        let Some(w) = word(tokens, k - 1) else { break };
+        let longer = format!("{w} {name}");
+        let known_compound = ground::noun_lemma(&longer).is_some_and(|l| l == longer)
+            || lex.entry_index(&longer).is_some();
+        let kind_word = wn.has_pos(w, super::wordnet::Pos::Noun)
+            && !wn.has_pos(w, super::wordnet::Pos::Adj)
+            && lex.material(w).is_none()
+            && lex.color_at(tokens, k - 1).is_none()
+            && lex.size_adjective(w).is_none()
+            && !w.contains('-');
+        if !(known_compound || kind_word) {
+            break;
+        }
+        name = longer;
+        k -= 1;
+    }
+    name
 }

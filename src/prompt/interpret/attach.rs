@@ -3,7 +3,7 @@
 
 use std::ops::Range;
 
-use super::{Clause, Ctx, Interp, Intro, Pending, Ref, is_room_placement};
+use super::{Clause, Ctx, Interp, Intro, Pending, Ref, is_plural_count, is_room_placement};
 use crate::prompt::chunk::{Chunk, Head, Item};
 use crate::prompt::lexicon::Support;
 use crate::prompt::mentions::{Count, GroupKind, Per};
@@ -243,6 +243,9 @@ impl Interp<'_> {
                     // "each setting has ...": stays per setting.
                 } else if subject_is_room || subject.is_empty() || (finite && c.zone) {
                     c.ctx = Ctx::Room;
+                } else if finite && c.each_subject {
+                    // "Two nightstands each hold a lamp": a lamp per nightstand, on it.
+                    c.ctx = Ctx::Each(subject);
                 } else if finite {
                     c.ctx = Ctx::Holder(subject, Intro::Verb(contains));
                     c.rel_scope = c.rel_scope || c.pronoun_subject;
@@ -414,8 +417,32 @@ impl Interp<'_> {
     pub(super) fn each(&mut self, c: &mut Clause, chunks: &[Chunk], k: usize) {
         let after_comma = k == 0 || matches!(chunks[k - 1].item, Item::Comma);
         let next = chunks.get(k + 1).map(|x| &x.item);
+        // "Two nightstands each hold a lamp": the subject, then "each", then its verb.
+        if !after_comma
+            && c.verb.is_none()
+            && matches!(
+                chunks.get(k.wrapping_sub(1)).map(|x| &x.item),
+                Some(Item::Np(_))
+            )
+            && matches!(next, Some(Item::Verb(..)))
+            && !c.subject.is_empty()
+        {
+            c.each_subject = true;
+            return;
+        }
         if after_comma && next.is_some() {
-            let parents = c.focus.clone();
+            // ", each with ...": about the plural phrase of the clause (its subject first),
+            // not the last phrase ("tables fill the room, each with two chairs").
+            let plural = |refs: &[Ref]| {
+                refs.first().is_some_and(|r| {
+                    r.instance.is_none() && is_plural_count(self.mentions[r.m].count)
+                })
+            };
+            let parents = [&c.subject, &c.focus, &c.last_np]
+                .into_iter()
+                .find(|refs| plural(refs))
+                .cloned()
+                .unwrap_or_else(|| c.focus.clone());
             if parents.is_empty() {
                 return;
             }
@@ -434,6 +461,9 @@ impl Interp<'_> {
                     c.stack.clear();
                     c.stack.push(Ctx::Room);
                     c.skip_next = true;
+                    // ", each topped with ...": the participle and its "with" both lead in.
+                    c.each_with = matches!(next, Some(Item::Verb(..)))
+                        && matches!(chunks.get(k + 2).map(|x| &x.item), Some(Item::With));
                 }
             }
             return;
@@ -473,6 +503,15 @@ impl Interp<'_> {
     }
 
     pub(super) fn in_total(&mut self, c: &Clause) {
+        // "Tall stools are tucked beneath the benches, eight in total": the subject's count.
+        if let Some(n) = c.bare_number
+            && let Some(s) = c.subject.first().or(c.focus.first())
+        {
+            let m = &mut self.mentions[s.m];
+            m.count = Count::Exactly(n);
+            m.per = None;
+            return;
+        }
         let Some(r) = c.last_np.first() else { return };
         let m = r.m;
         let cat = self.mentions[m].category.clone();

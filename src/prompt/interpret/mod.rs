@@ -104,6 +104,12 @@ struct Clause {
     pronoun_subject: bool,
     of_once: bool,
     list_since_comma: Vec<Ref>,
+    /// "Two nightstands each hold ...": what the verb brings is per subject.
+    each_subject: bool,
+    /// A bare number ("..., eight in total").
+    bare_number: Option<u32>,
+    /// ", each topped with": the "with" keeps the per-parent context.
+    each_with: bool,
 }
 
 impl Clause {
@@ -135,6 +141,9 @@ impl Clause {
             pronoun_subject: false,
             of_once: false,
             list_since_comma: Vec::new(),
+            each_subject: false,
+            bare_number: None,
+            each_with: false,
         }
     }
 }
@@ -309,6 +318,7 @@ impl<'a> Interp<'a> {
                     chunks.get(k.wrapping_sub(1)).map(|x| &x.item),
                 ),
                 Item::Verb(class, word) => self.verb(&mut c, class, word, chunks, k),
+                Item::With if c.each_with => c.each_with = false,
                 Item::With => {
                     if let Some(skip) = self.features_after_with(&mut c, chunks, k) {
                         k = skip;
@@ -473,6 +483,9 @@ impl<'a> Interp<'a> {
             Head::Pronoun(p) => self.pronoun_np(c, *p),
             Head::Setting | Head::Feature => {}
             Head::NonObject => {
+                if np.number.is_some() && np.attrs.modifiers.is_empty() && np.det.is_none() {
+                    c.bare_number = np.number;
+                }
                 if c.verb.is_none() && c.subject.is_empty() && np.det.is_some() {
                     // "A seating area in the center features ...": a zone.
                     c.zone = true;
