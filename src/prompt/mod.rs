@@ -66,17 +66,40 @@ pub struct Reading {
     /// for, 20 built: ...").
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub notes: Vec<String>,
+    /// Share of the prompt's words that are English function words ("the", "with", "on"):
+    /// about 0.3-0.5 in English prose, near zero in other languages.
+    #[serde(default = "one")]
+    pub english_share: f64,
 }
+
+fn one() -> f64 {
+    1.0
+}
+
+/// Fewest words before the English share decides anything.
+const MIN_WORDS_FOR_LANGUAGE: usize = 6;
+/// Below this share of English function words, a prompt is not read as English.
+const MIN_ENGLISH_SHARE: f64 = 0.1;
 
 impl Reading {
     /// True when the reader understood something: a room word or an object noun grounded in
     /// the lexicon or WordNet (dropped and unknown words do not count).
     pub fn understood(&self) -> bool {
-        !self.mentions.is_empty() || self.nouns.iter().any(|n| n.status != NounStatus::Dropped)
+        self.english_share >= MIN_ENGLISH_SHARE
+            && self
+                .nouns
+                .iter()
+                .any(|n| !matches!(n.status, NounStatus::Dropped | NounStatus::Unknown))
     }
 
     /// What the reader understood, for messages: the nouns it read and what became of them.
     pub fn understanding(&self) -> String {
+        if self.english_share < MIN_ENGLISH_SHARE {
+            return format!(
+                "{:.0} % of its words are English function words",
+                100.0 * self.english_share
+            );
+        }
         if self.nouns.is_empty() {
             return "no noun read".to_string();
         }
@@ -179,7 +202,22 @@ pub fn read(prompt: &str) -> Reading {
         density,
         nouns: noun_reports(&chunks),
         notes: st.notes,
+        english_share: english_share(lex, &toks),
     }
+}
+
+/// Share of the words that are English function words (1 for prompts too short to tell).
+fn english_share(lex: &Lexicon, toks: &[tokens::Token]) -> f64 {
+    let words: Vec<&str> = toks
+        .iter()
+        .filter(|t| t.kind == tokens::TokenKind::Word)
+        .map(|t| t.text.as_str())
+        .collect();
+    if words.len() < MIN_WORDS_FOR_LANGUAGE {
+        return 1.0;
+    }
+    let function = words.iter().filter(|w| lex.is_function_word(w)).count();
+    function as f64 / words.len() as f64
 }
 
 /// Every noun phrase head of the prompt and what the reader made of it, once per noun.

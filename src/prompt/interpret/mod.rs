@@ -221,6 +221,12 @@ impl<'a> Interp<'a> {
     /// Reads one sentence.
     pub fn sentence(&mut self, chunks: &[Chunk]) {
         if self.scope == Scope::House
+            && let Some(i) = self.fronted_room(chunks)
+        {
+            // "In the living room, a sofa faces ...", "At the bar, six stools ...".
+            self.room = i;
+            self.focused = true;
+        } else if self.scope == Scope::House
             && !self.focused
             && let Some(i) = self.room_by_items(chunks)
         {
@@ -230,6 +236,21 @@ impl<'a> Interp<'a> {
         if let Some((first, rooms)) = self.each_rooms.take() {
             self.copy_to_rooms(first, &rooms);
         }
+    }
+
+    /// The room of a sentence that opens with a place phrase naming one ("In the kitchen,").
+    fn fronted_room(&self, chunks: &[Chunk]) -> Option<usize> {
+        let [first, second, third, ..] = chunks else {
+            return None;
+        };
+        let (Item::Prep(_), Item::Np(np), Item::Comma) = (&first.item, &second.item, &third.item)
+        else {
+            return None;
+        };
+        if !matches!(np.head, Head::Room { .. }) {
+            return None;
+        }
+        rooms::resolve(&self.rooms, np, self.room).filter(|&i| i != self.room || self.focused)
     }
 
     /// Before any sentence named its room: the room the sentence's objects belong in (a
@@ -520,7 +541,11 @@ impl<'a> Interp<'a> {
                     sp.push(r);
                 }
             }
-            if self.scope == Scope::House && np.det.as_deref() == Some("each") {
+            // "Each private office has ...", "Both bathrooms have ...", "The bedrooms have
+            // ...": the same contents in every such room.
+            let every = np.det.as_deref() == Some("each")
+                || (np.plural && (np.is_definite() || np.number.is_some()));
+            if self.scope == Scope::House && every {
                 // "Each private office has ...": the same contents in every such room.
                 let same: Vec<usize> = (0..self.rooms.len())
                     .filter(|&i| {
