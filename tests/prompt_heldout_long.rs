@@ -7,52 +7,19 @@
 //! out: rules are never fitted to it; the floors below sit under the measured score so a change
 //! that makes reading worse fails.
 
+use scenesmith::eval::requirements;
 use scenesmith::prompt::{self, Count, Reading, Scope};
 use serde_json::Value;
 
-fn norm(s: &str) -> String {
-    let s = s.to_lowercase().replace(['_', '-'], " ");
-    let words: Vec<&str> = s.split_whitespace().collect();
-    let mut out: Vec<String> = words.iter().map(|w| w.to_string()).collect();
-    if let Some(last) = out.last_mut() {
-        *last = prompt::singular(last);
-    }
-    out.join(" ")
-}
-
-/// Canonical lexicon noun of a label, or the label.
-fn canon(label: &str) -> String {
-    prompt::lexicon()
-        .lookup(label)
-        .map_or_else(|| norm(label), |e| e.noun.clone())
-}
-
-/// Does a reader noun (`category`, `noun` as written) meet an object label? Same words, the
-/// same lexicon entry, or a narrower kind through the lexicon's `kind_of` chain.
+/// Does a reader noun (`category`, `noun` as written) meet an object label? The rule of
+/// `scenesmith eval --requirements` (label matching on names).
 fn names(label: &str, category: &str, noun: &str) -> bool {
-    let l = norm(label);
-    if norm(category) == l || norm(noun) == l {
-        return true;
-    }
-    let want = canon(label);
-    let mut k = Some(canon(category));
-    for _ in 0..5 {
-        match k {
-            Some(ref c) if *c == want => return true,
-            Some(ref c) => k = prompt::lexicon().lookup(c).and_then(|e| e.kind_of.clone()),
-            None => return false,
-        }
-    }
-    false
+    requirements::name_meets(label, category) || requirements::name_meets(label, noun)
 }
 
 fn room_names(label: &str, r: &prompt::RoomReading) -> bool {
-    let l = norm(label);
-    norm(&r.words) == l
-        || norm(&r.room_type) == l
-        || scenesmith::knowledge::knowledge()
-            .room_type_of(&l)
-            .is_some_and(|t| t == r.room_type)
+    requirements::room_name_meets(label, &r.room_type, false)
+        || requirements::room_name_meets(label, &r.words, true)
 }
 
 /// Smallest and largest number a count allows (None: unbounded).

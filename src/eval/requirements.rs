@@ -386,7 +386,12 @@ pub fn requirements_from_value(
 /// A label as compared: lower case, `_` and `-` read as spaces, runs of spaces collapsed, the
 /// last word in the singular ("Dining_Chairs" -> "dining chair").
 pub fn normalize_label(text: &str) -> String {
-    let lower = text.to_lowercase().replace(['_', '-'], " ");
+    // "ship's wheel" reads as "ship wheel", as the prompt reader reads it.
+    let lower = text
+        .to_lowercase()
+        .replace(['\u{2019}'], "'")
+        .replace("'s ", " ")
+        .replace(['_', '-', '\''], " ");
     let mut words: Vec<String> = lower.split_whitespace().map(str::to_string).collect();
     if let Some(last) = words.last_mut() {
         *last = crate::prompt::singular(last);
@@ -430,12 +435,20 @@ impl Noun {
     }
 
     /// An object called `self` meets a requirement for `label`: the same words, the same
-    /// lexicon entry, or a narrower kind of it.
+    /// lexicon entry, a narrower kind of it, or a compound whose head is the label (a
+    /// "bentwood chair" is a "chair").
     fn is_a(&self, label: &Noun) -> bool {
         self.normal == label.normal
             || self.canonical == label.canonical
             || self.broader.contains(&label.canonical)
+            || self.normal.ends_with(&format!(" {}", label.normal))
     }
+}
+
+/// Whether an object called `name` meets an object requirement for `label` (the rule of
+/// [`object_matches`], on names alone).
+pub fn name_meets(label: &str, name: &str) -> bool {
+    Noun::read(name).is_a(&Noun::read(label))
 }
 
 /// Whether `object` meets an object requirement for `label`: its category or its prompt
@@ -470,11 +483,24 @@ fn room_type_key(text: &str) -> Option<String> {
 /// normalises to the label, or both name the same room type of the knowledge base ("exam
 /// room", "examination room" and `exam_room`).
 pub fn room_matches(label: &str, room: &Room) -> bool {
+    room_name_meets(label, &room.room_type, false)
+        || room
+            .label
+            .as_ref()
+            .is_some_and(|l| room_name_meets(label, l, true))
+}
+
+/// Whether a room called `name` (its type key, or its label when `label_words`) meets a room
+/// requirement for `label`: the same words, the same room type, or a label whose head is the
+/// requirement (a "teenager bedroom" is a "bedroom"; type keys such as `living_kitchen` are
+/// no compounds).
+pub fn room_name_meets(label: &str, name: &str, label_words: bool) -> bool {
     let normal = normalize_label(label);
     let key = room_type_key(label);
-    std::iter::once(&room.room_type)
-        .chain(room.label.as_ref())
-        .any(|name| normalize_label(name) == normal || key.is_some() && room_type_key(name) == key)
+    let n = normalize_label(name);
+    n == normal
+        || label_words && n.ends_with(&format!(" {normal}"))
+        || key.is_some() && room_type_key(name) == key
 }
 
 /// One requirement and what the scene has.

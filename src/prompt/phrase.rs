@@ -346,6 +346,17 @@ pub(crate) fn parse_np(
             _ => break,
         }
     }
+    // "a living room sofa", "this boutique day spa": a room word before a noun modifies it.
+    if let Some((rn, _)) = kb.room_type_at(tokens, j)
+        && j + rn < end
+        && lex.noun_at(tokens, j).is_none_or(|(l, ..)| l <= rn)
+        && noun_follows(lex, kb, tokens, j + rn)
+    {
+        np.attrs
+            .modifiers
+            .extend(tokens[j..j + rn].iter().map(|t| t.raw.clone()));
+        j += rn;
+    }
     let evidence =
         np.has_det() || np.ordinal.is_some() || !np.attrs.modifiers.is_empty() || np.negated;
     let w = at(j)?;
@@ -434,12 +445,22 @@ pub(crate) fn parse_np(
         }
         // A known noun followed by nouns the lexicon does not know ends with them: "ball
         // pit", "filter coffee stand" — when WordNet grounds the last one as a thing.
-        if !plural && let Some((len, head)) = compound_tail(lex, kb, tokens, start + n, end) {
+        let singular_det = matches!(np.det.as_deref(), Some("indefinite" | "each" | "another"))
+            || np.number == Some(1);
+        if !plural
+            && let Some((len, head)) = compound_tail(lex, kb, tokens, start + n, end, singular_det)
+        {
             let last = start + n + len - 1;
-            let mut written: Vec<String> = tokens[start..=last]
-                .iter()
-                .map(|t| t.text.clone())
-                .collect();
+            // "an antique barometer": a one-word noun that is also an adjective modifies.
+            let adjective_first = n == 1
+                && super::wordnet::wordnet().has_pos(&tokens[start].text, super::wordnet::Pos::Adj);
+            if adjective_first {
+                np.attrs.adjectives.push(tokens[start].text.clone());
+                np.attrs.modifiers.push(tokens[start].raw.clone());
+            }
+            let from = if adjective_first { start + n } else { start };
+            let mut written: Vec<String> =
+                tokens[from..=last].iter().map(|t| t.text.clone()).collect();
             np.plural = lex.is_plural(&tokens[last].text);
             if let Some(w) = written.last_mut() {
                 *w = head.singular.clone();
@@ -552,7 +573,7 @@ pub(crate) fn parse_np(
                 np.det.as_deref(),
                 Some("indefinite" | "each" | "another" | "several")
             );
-        match open_head(lex, kb, tokens, j, end, &np, strong) {
+        match open_head(lex, kb, tokens, j, end, &np, strong, in_list) {
             Open::Lexicon {
                 before,
                 n2,
@@ -732,6 +753,23 @@ fn ground_words(lex: &Lexicon, words: &[&str], strong: bool) -> Result<Grounded,
     })
 }
 
+/// A noun that a room word before it modifies ("sofa" in "living room sofa"): a noun of the
+/// lexicon or WordNet, no room or room-space word, no verb in -s ("The kitchen boasts").
+fn noun_follows(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], k: usize) -> bool {
+    let Some(x) = word(tokens, k) else {
+        return false;
+    };
+    let verb_s = x.ends_with('s')
+        && !super::wordnet::wordnet()
+            .base_forms(x, super::wordnet::Pos::Verb)
+            .is_empty();
+    compound_word(lex, kb, tokens, k)
+        && (lex.noun_at(tokens, k).is_some() || ground::is_noun(x))
+        && !ground::rules().is_room_space_word(&lex.singular(x))
+        && kb.room_type_at(tokens, k).is_none()
+        && !verb_s
+}
+
 /// A word that may continue an open noun compound: not a function word, a landmark, a
 /// preposition, a verb of the lexicon, a number, and a noun or adjective to WordNet.
 fn compound_word(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], k: usize) -> bool {
@@ -759,13 +797,19 @@ fn compound_tail(
     tokens: &[Token],
     at: usize,
     end: usize,
+    singular_det: bool,
 ) -> Option<(usize, Grounded)> {
     let mut len = 0;
+    let wn = super::wordnet::wordnet();
     while len < 2
         && at + len < end
         && lex.noun_at(tokens, at + len).is_none()
         && compound_word(lex, kb, tokens, at + len)
         && ground::is_noun(&tokens[at + len].text)
+        // "A sturdy squat rack anchors the centre": a verb in -s after "a ...".
+        && !(singular_det
+            && tokens[at + len].text.ends_with('s')
+            && !wn.base_forms(&tokens[at + len].text, super::wordnet::Pos::Verb).is_empty())
     {
         len += 1;
         if lex.is_plural(&tokens[at + len - 1].text) {
@@ -829,6 +873,7 @@ enum Open {
 /// Reads words the lexicon does not know at `j`: the run of compound words, then WordNet
 /// decides whether its last word names a thing. Adjectives before it are modifiers; nouns
 /// before it are part of the name ("filter coffee stand").
+#[allow(clippy::too_many_arguments)]
 fn open_head(
     lex: &Lexicon,
     kb: &Knowledge,
@@ -837,6 +882,7 @@ fn open_head(
     end: usize,
     np: &Np,
     strong: bool,
+    in_list: bool,
 ) -> Open {
     let at = |k: usize| if k < end { word(tokens, k) } else { None };
     let singular_det = matches!(np.det.as_deref(), Some("indefinite" | "each" | "another"))
@@ -917,6 +963,31 @@ fn open_head(
         })
         .unwrap_or(words.len() - 1);
     let name = &words[name_from..];
+    let wn = super::wordnet::wordnet();
+    let last = words[words.len() - 1];
+    let bare = np.det.is_none() && np.number.is_none() && np.quant.is_none() && np.group.is_none();
+    let singular = ground::noun_lemma(last).is_some_and(|l| l == last);
+    // "elegant and formal", "adds greenery": a bare word that is also an adjective, or a
+    // bare singular outside a list, names no object.
+    let bare_reason = if bare && wn.has_pos(last, super::wordnet::Pos::Adj) {
+        Some("an adjective here (no determiner)")
+    } else if bare && singular && !in_list {
+        Some("a bare singular outside a list (a mass word here)")
+    } else {
+        None
+    };
+    if let Some(reason) = bare_reason {
+        return Open::Dropped {
+            next: k,
+            report: NounReport {
+                noun: written,
+                lemma: ground::noun_lemma(&name.join(" ")),
+                status: NounStatus::Dropped,
+                family: None,
+                reason: Some(reason.to_string()),
+            },
+        };
+    }
     match ground_words(lex, name, strong) {
         Ok(head) => {
             let last = words.len() - 1;

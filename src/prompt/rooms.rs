@@ -519,10 +519,10 @@ fn add_subject_rooms(lex: &Lexicon, sentences: &[Vec<Chunk>], st: &mut Structure
         let Head::Room { key, words } = &np.head else {
             continue;
         };
-        let known = st
-            .rooms
-            .iter()
-            .any(|r| r.room_type == *key || r.words == *words);
+        // "The office is tidy" after "this open-plan office": the same room.
+        let known = st.rooms.iter().any(|r| {
+            r.room_type == *key || r.words == *words || r.words.ends_with(&format!(" {words}"))
+        });
         if known {
             continue;
         }

@@ -426,6 +426,7 @@ impl Interp<'_> {
             )
             && matches!(next, Some(Item::Verb(..)))
             && !c.subject.is_empty()
+            && c.last_np.first().map(|r| r.m) == c.subject.first().map(|r| r.m)
         {
             c.each_subject = true;
             return;
