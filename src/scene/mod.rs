@@ -406,6 +406,14 @@ impl Scene {
         }
     }
 
+    /// The library category an object is built as (its asset's; an object's own `category`
+    /// is what the prompt calls it, "manicure_table" for a `table`).
+    pub fn built_as<'a>(&'a self, o: &'a SceneObject) -> &'a str {
+        self.assets
+            .get(&o.asset)
+            .map_or(o.category.as_str(), |a| a.category.as_str())
+    }
+
     /// The object with id `id`.
     pub fn object(&self, id: &str) -> Option<&SceneObject> {
         self.objects.iter().find(|o| o.id == id)

@@ -825,8 +825,8 @@ fn place_settings(state: &mut StageState, a: SettingsArgs) -> Result<PlaceResult
     let mut seats: Vec<(f64, f64, f64)> = Vec::new(); // edge point (u, v) and inward yaw
     for o in state.room_objects() {
         if !matches!(
-            o.category.as_str(),
-            "chair" | "stool" | "bar stool" | "bench" | "armchair"
+            state.scene.scene.built_as(o),
+            "chair" | "stool" | "bar_stool" | "bar stool" | "bench" | "armchair"
         ) {
             continue;
         }

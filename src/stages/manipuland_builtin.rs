@@ -299,7 +299,10 @@ impl Critic<StageState> for BuiltinManipulandCritic {
                 let up = o
                     .world_from_object
                     .transform_vector(&nalgebra::Vector3::z());
-                let lies = matches!(o.category.as_str(), "book" | "fork" | "knife" | "spoon");
+                let lies = matches!(
+                    state.scene.scene.built_as(o),
+                    "book" | "fork" | "knife" | "spoon"
+                );
                 if up.z < 0.9 && !lies {
                     tilted += 1;
                     issues.push(Issue {

@@ -280,7 +280,11 @@ impl StageState {
             return true;
         }
         let main = router::parse::main_categories(noun);
+        // Objects carry the prompt's name ("manicure_table"): what the router builds for the
+        // name is what it is.
+        let built_as = router::parse::main_categories(&category.replace('_', " "));
         main.contains(&category)
+            || built_as.first().is_some_and(|b| main.contains(b))
             || procedural::prior(category).is_some_and(|p| {
                 main.iter()
                     .any(|c| procedural::support_sibling(c, p.support) == Some(category))
@@ -360,7 +364,15 @@ impl StageState {
             );
         }
         let notes = routing_notes(&routed);
-        let category = routed.primary.category.clone();
+        // The object is called what the description calls it ("manicure table", "bedside
+        // table"); its asset keeps the library's category.
+        let category = if routed.primary.strategy == Strategy::Generic {
+            routed.primary.category.clone()
+        } else {
+            router::parse::object_name(description)
+                .map(|n| crate::scene::sanitize_name(&n))
+                .unwrap_or_else(|| routed.primary.category.clone())
+        };
         let id = self
             .scene
             .insert_asset(routed.primary.asset.as_ref().clone());

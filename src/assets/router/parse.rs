@@ -322,6 +322,45 @@ pub fn phrase(text: &str) -> Phrase {
     p
 }
 
+/// What the main object of `description` is called, as the description calls it: the library
+/// noun as written ("bedside table", "fridge") with the nouns before it that make it a kind
+/// ("manicure table", "bentwood chair"), not its colour, material, style or size words ("oak
+/// dining table" is a "dining table"). `None` when no library noun is in the description.
+pub fn object_name(description: &str) -> Option<String> {
+    let norm = attributes::normalize(description);
+    let words: Vec<String> = norm.split_whitespace().map(str::to_string).collect();
+    // Only the main phrase: the parts after a connector ("with 6 apples") name other things.
+    let end = words
+        .iter()
+        .position(|w| {
+            CONNECTORS
+                .iter()
+                .any(|c| c.split(' ').next() == Some(w.as_str()))
+        })
+        .unwrap_or(words.len());
+    let main = &words[..end];
+    let (start, len, _) = find_noun(main)?;
+    let wn = crate::prompt::wordnet::wordnet();
+    let mut from = start;
+    while from > 0 {
+        let w = main[from - 1].as_str();
+        let kind_word = wn.has_pos(w, crate::prompt::wordnet::Pos::Noun)
+            && !wn.has_pos(w, crate::prompt::wordnet::Pos::Adj)
+            && !attributes::is_attribute_word(w)
+            && !STOP.contains(&w)
+            && number_word(w).is_none();
+        if !kind_word {
+            break;
+        }
+        from -= 1;
+    }
+    let mut name: Vec<String> = main[from..start + len].to_vec();
+    if let Some(last) = name.last_mut() {
+        *last = singular(last);
+    }
+    Some(name.join(" "))
+}
+
 /// Every category the main object of `description` can be built as, first the one built when
 /// the stage does not choose: a compound's container ("fruit bowl": `serving_bowl`), else the
 /// head noun's candidates ("clock": wall and table clocks), else a group word's members

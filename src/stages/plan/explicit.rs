@@ -303,13 +303,20 @@ impl Builder<'_> {
                 && self.lex.lookup(&m.category).map(|e| e.support) == Some(Support::Surface)
             {
                 // An object that rests on furniture, which the prompt stands somewhere in the
-                // room ("a printer sits in the corner"): a side table there carries it.
+                // room ("a printer sits in the corner"): a stand made for it when the lexicon
+                // names one among its usual parents ("a TV stands against the wall": a TV
+                // stand), else a side table, carries it there.
                 let arrangement = self
                     .relation_arrangement(m, count)
                     .unwrap_or(Arrangement::AgainstWall);
+                let stand = self
+                    .lex
+                    .lookup(&m.category)
+                    .and_then(|e| e.rests_on.iter().find(|p| p.ends_with("stand")).cloned())
+                    .unwrap_or_else(|| STAND.to_string());
                 self.plan.furniture.push(Want {
-                    noun: STAND.into(),
-                    description: STAND.into(),
+                    noun: stand.clone(),
+                    description: stand.clone(),
                     count,
                     explicit: false,
                     at_least: false,
@@ -318,7 +325,7 @@ impl Builder<'_> {
                     parent_instance: None,
                 });
                 self.surface.push(SurfaceItem {
-                    parent: STAND.into(),
+                    parent: stand,
                     want,
                     place_settings: false,
                 });
