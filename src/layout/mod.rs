@@ -114,7 +114,7 @@ pub fn single_room(
     Room {
         id: room_id.to_string(),
         room_type: reading.room_type.clone(),
-        label: None,
+        label: reading.rooms.first().map(|r| r.words.clone()),
         prompt: prompt_text.to_string(),
         floor_polygon: vec![[0.0, 0.0], [w, 0.0], [w, d], [0.0, d]],
         wall_height: info.wall_height,

@@ -248,7 +248,7 @@ pub fn build_rooms(
         rooms.push(Room {
             id: r.id.clone(),
             room_type: r.room_type.clone(),
-            label: None,
+            label: Some(r.label.clone()),
             prompt: r.prompt.clone(),
             floor_polygon: vec![[x0, y0], [x1, y0], [x1, y1], [x0, y1]],
             wall_height: h,

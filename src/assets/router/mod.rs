@@ -520,7 +520,27 @@ fn route_uncached(request: &RouteRequest, ctx: &RouterContext) -> Result<Routed,
             }
         }
     }
-    let category = pick_category(&main, request.stage)?;
+    let category = match pick_category(&main, request.stage) {
+        // A WordNet family of another stage ("sarcophagus" -> box, asked for as furniture):
+        // the nearest family this stage builds, else a stand-in.
+        Err(RouteError::WrongStage { .. }) if main.family.is_some() => {
+            let noun = main.unknown_noun.clone().unwrap_or_default();
+            match parse::library_family_for(&noun, request.stage.support()) {
+                Some(f) => {
+                    main.categories = procedural::candidate_categories(&f.noun);
+                    main.noun = Some(f.noun);
+                    main.family = Some((noun, f.via));
+                }
+                None => {
+                    main.categories.clear();
+                    main.noun = None;
+                    main.family = None;
+                }
+            }
+            pick_category(&main, request.stage)?
+        }
+        other => other?,
+    };
     if category.is_none() && main.unknown_noun.is_none() && main.group.is_empty() {
         return Err(RouteError::Empty);
     }
@@ -545,6 +565,13 @@ fn route_uncached(request: &RouteRequest, ctx: &RouterContext) -> Result<Routed,
         ctx,
         &mut notes,
     )?;
+    if let Some((noun, via)) = &main.family {
+        notes.push(format!(
+            "no generator makes a {noun}: built as its nearest family, a {} (WordNet: {})",
+            cat_name.replace('_', " "),
+            via.join(" > ")
+        ));
+    }
     let primary = RoutedAsset {
         asset,
         category: cat_name.clone(),

@@ -114,6 +114,9 @@ pub struct Phrase {
     pub group: Vec<String>,
     /// The object noun when no library noun matched (for a generic stand-in).
     pub unknown_noun: Option<String>,
+    /// For a noun the library does not know but WordNet places under a family it builds:
+    /// the noun and the hypernyms from it to the family (`noun` is then the family).
+    pub family: Option<(String, Vec<String>)>,
     /// Count given in the phrase ("6 apples", "a pair of", "several"), if any.
     pub count: Option<u32>,
     /// Whether the noun was plural.
@@ -314,12 +317,44 @@ pub fn phrase(text: &str) -> Phrase {
                 0 | 1 => head,
                 n => format!("{} {head}", content[n - 2]),
             };
+            // A noun the library does not know is built as its nearest family along the
+            // WordNet hypernyms that the library does know ("samovar" -> urn).
+            if let Some(f) = library_family(&noun) {
+                p.categories = candidate_categories(&f.noun);
+                p.noun = Some(f.noun.clone());
+                p.family = Some((noun.clone(), f.via));
+            }
             p.unknown_noun = Some(noun);
         }
         rest = words.clone();
     }
     p.attributes = attributes::parse(&rest.join(" "));
     p
+}
+
+/// The nearest family along the WordNet hypernyms of `noun` (or of its last word) that the
+/// library builds.
+fn library_family(noun: &str) -> Option<crate::prompt::ground::Family> {
+    family_where(noun, &|l: &str| !candidate_categories(l).is_empty())
+}
+
+/// [`library_family`] among the categories of one support class (the stage asking).
+pub fn library_family_for(
+    noun: &str,
+    support: crate::assets::procedural::SupportClass,
+) -> Option<crate::prompt::ground::Family> {
+    family_where(noun, &|l: &str| {
+        candidate_categories(l)
+            .iter()
+            .any(|c| crate::assets::procedural::prior(c).is_some_and(|p| p.support == support))
+    })
+}
+
+fn family_where(noun: &str, known: &dyn Fn(&str) -> bool) -> Option<crate::prompt::ground::Family> {
+    crate::prompt::ground::family(noun, known).or_else(|| {
+        let last = noun.rsplit(' ').next().filter(|l| *l != noun)?;
+        crate::prompt::ground::family(last, known)
+    })
 }
 
 /// What the main object of `description` is called, as the description calls it: the library
@@ -339,7 +374,10 @@ pub fn object_name(description: &str) -> Option<String> {
         })
         .unwrap_or(words.len());
     let main = &words[..end];
-    let (start, len, _) = find_noun(main)?;
+    let Some((start, len, _)) = find_noun(main) else {
+        // A noun the library does not know keeps its own name ("samovar").
+        return phrase(&main.join(" ")).unknown_noun;
+    };
     let wn = crate::prompt::wordnet::wordnet();
     let mut from = start;
     while from > 0 {
@@ -540,10 +578,20 @@ mod tests {
 
     #[test]
     fn unknown_nouns_are_named() {
+        // No generator makes a sarcophagus; WordNet puts it under a family the library
+        // builds, and the noun keeps its name.
         let p = phrase("an ancient golden sarcophagus");
-        assert!(p.categories.is_empty());
+        assert!(!p.categories.is_empty());
         assert_eq!(p.unknown_noun.as_deref(), Some("sarcophagus"));
+        assert_eq!(p.family.as_ref().map(|f| f.0.as_str()), Some("sarcophagus"));
         assert_eq!(p.attributes.material.as_deref(), Some("gold"));
+        assert_eq!(
+            object_name("an ancient golden sarcophagus").as_deref(),
+            Some("sarcophagus")
+        );
+        // A noun with no family on its hypernyms has no categories.
+        let f = phrase("a flux capacitor");
+        assert!(f.categories.is_empty() && f.family.is_none());
         let r = phrase("two robotic arms");
         assert_eq!(r.unknown_noun.as_deref(), Some("robotic arm"));
         assert!(r.plural);

@@ -123,8 +123,9 @@ fn composites_split_into_parts_now_and_later() {
 
 #[test]
 fn unknown_nouns_fall_back_to_marked_generic_shapes() {
+    // A flux capacitor has no family the library builds along its WordNet hypernyms.
     let r = route(
-        &RouteRequest::new("an ancient sarcophagus", Stage::Furniture, 4),
+        &RouteRequest::new("an ancient flux capacitor", Stage::Furniture, 4),
         &ctx(),
     )
     .unwrap();
@@ -133,10 +134,30 @@ fn unknown_nouns_fall_back_to_marked_generic_shapes() {
     assert!(
         r.notes
             .iter()
-            .any(|n| n.starts_with("generic") && n.contains("sarcophagus")),
+            .any(|n| n.starts_with("generic") && n.contains("capacitor")),
         "{:?}",
         r.notes
     );
+    // An escritoire has one the furniture stage builds: no stand-in, and the note says what
+    // it was built as.
+    let f = route(
+        &RouteRequest::new("an old escritoire", Stage::Furniture, 4),
+        &ctx(),
+    )
+    .unwrap();
+    assert_ne!(f.primary.strategy, Strategy::Generic);
+    assert!(
+        f.notes.iter().any(|n| n.contains("nearest family")),
+        "{:?}",
+        f.notes
+    );
+    // A sarcophagus's family (a box) rests on furniture: as furniture it stands in.
+    let g = route(
+        &RouteRequest::new("an ancient sarcophagus", Stage::Furniture, 4),
+        &ctx(),
+    )
+    .unwrap();
+    assert_eq!(g.primary.strategy, Strategy::Generic);
     let s = route(
         &RouteRequest::new("a golden scarab beetle", Stage::Manipuland, 4),
         &ctx(),
