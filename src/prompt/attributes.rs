@@ -324,9 +324,12 @@ pub(crate) fn modifier_at(
             return Some(single(t, ModKind::Adjective(w.to_string())));
         }
     }
+    // Participles ("scattered", "folded", "hanging"), unless the word is a noun WordNet
+    // knows as written ("flowerbed", "seaweed", "building").
+    let noun_lemma = wn.is_lemma(w, super::wordnet::Pos::Noun);
     if w.contains('-')
-        || (w.len() > 4 && w.ends_with("ed"))
-        || (w.len() > 5 && w.ends_with("ing") && next_wordish)
+        || (w.len() > 4 && w.ends_with("ed") && !noun_lemma)
+        || (w.len() > 5 && w.ends_with("ing") && next_wordish && !noun_lemma)
     {
         return Some(single(t, ModKind::Adjective(w.to_string())));
     }

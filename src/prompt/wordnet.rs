@@ -397,6 +397,14 @@ impl WordNet {
         self.noun_lemmas.len()
     }
 
+    /// Every noun lemma, sorted by bytes (words separated by spaces or as WordNet writes
+    /// them).
+    pub fn noun_lemmas(&self) -> impl Iterator<Item = &str> {
+        self.noun_lemmas
+            .iter()
+            .map(|&s| Span::of(&self.noun_text, s))
+    }
+
     fn noun_index(&self, lemma: &str) -> Option<usize> {
         find(&self.noun_text, &self.noun_lemmas, lemma)
     }

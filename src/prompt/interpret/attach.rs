@@ -462,6 +462,8 @@ impl Interp<'_> {
                     c.stack.clear();
                     c.stack.push(Ctx::Room);
                     c.skip_next = true;
+                    // What follows is the first thing of each, not a new list item.
+                    c.after_sep = false;
                     // ", each topped with ...": the participle and its "with" both lead in.
                     c.each_with = matches!(next, Some(Item::Verb(..)))
                         && matches!(chunks.get(k + 2).map(|x| &x.item), Some(Item::With));
