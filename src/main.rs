@@ -291,6 +291,12 @@ fn run_generate(cli_json: bool, opts: GenerateOptions) -> anyhow::Result<ExitCod
         for noun in &summary.unknown_nouns {
             eprintln!("  note: no asset generator knows {noun:?}; it was left out");
         }
+        for line in scenesmith::prompt::report::summary_lines(&summary.nouns) {
+            eprintln!("  {line}");
+        }
+        for n in &summary.notes {
+            eprintln!("  note: {n}");
+        }
         for st in &summary.stages {
             if let Some(c) = &st.critique {
                 let scores: Vec<String> = c

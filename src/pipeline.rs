@@ -193,6 +193,10 @@ pub struct GenerateSummary {
     pub plan_coverage: Vec<(String, u32, u32)>,
     /// Nouns of the prompt no generator knows.
     pub unknown_nouns: Vec<String>,
+    /// Every noun the reader read and what became of it.
+    pub nouns: Vec<crate::prompt::NounReport>,
+    /// What the reader and the room plans capped, in words for the user.
+    pub notes: Vec<String>,
     /// Penetrating pairs found by the in-process (parry3d) check.
     pub rust_penetrating_pairs: usize,
     /// Drake check, when run.
@@ -291,6 +295,11 @@ pub struct BuildReport {
     pub plan_coverage: Vec<(String, u32, u32)>,
     /// Nouns of the prompt no generator knows.
     pub unknown_nouns: Vec<String>,
+    /// Every noun the reader read and what became of it (lexicon, routed, stand-in,
+    /// dropped and why).
+    pub nouns: Vec<crate::prompt::NounReport>,
+    /// What the reader and the room plans capped, in words for the user.
+    pub notes: Vec<String>,
 }
 
 /// Builds the scene of a prompt in memory (no files): layout, then every placement stage of
@@ -330,6 +339,9 @@ pub fn build_scene_with(
         .backends
         .insert("physics".into(), "drake".into());
     let mut report = BuildReport::default();
+    let reading = crate::prompt::read(prompt_text);
+    report.nouns = reading.nouns;
+    report.notes = reading.notes;
     // The layout stage: rooms, walls, doors, windows, materials and per-room prompts.
     let mut state = match store.load("layout") {
         Some((saved, log)) => {
@@ -351,6 +363,9 @@ pub fn build_scene_with(
     let mut requested: Vec<(String, u32)> = Vec::new();
     for room in &rooms {
         let plan = plan_room(&layout::stage::room_reading(room, is_house));
+        for n in &plan.notes {
+            report.notes.push(format!("{}: {n}", room.id));
+        }
         for noun in &plan.unknown {
             if !report.unknown_nouns.contains(noun) {
                 report.unknown_nouns.push(noun.clone());
@@ -592,6 +607,8 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
         stages: report.stages,
         plan_coverage: report.plan_coverage,
         unknown_nouns: report.unknown_nouns,
+        nouns: report.nouns,
+        notes: report.notes,
         rust_penetrating_pairs: rust_pairs.len(),
         check,
         post_process: physics.0,

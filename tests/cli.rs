@@ -104,6 +104,50 @@ fn empty_prompt_exits_2_with_a_message() {
     assert_eq!(std::fs::read_dir(root.path()).unwrap().count(), 0);
 }
 
+/// A prompt the built-in reader understands nothing of (another language, gibberish) exits 2
+/// with what it read and the way out, and writes nothing; `--lenient` builds a default room.
+#[test]
+fn unreadable_prompts_are_refused_unless_lenient() {
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("never");
+    for prompt in [
+        "Ein Schlafzimmer mit einem Bett und einem Kleiderschrank.",
+        "Une cuisine lumineuse avec une grande table en bois et six chaises.",
+        "寝室にはベッドと机があります。",
+        "asdkjh qwpeoiru zxmcnv",
+    ] {
+        let g = scenesmith(&["generate", prompt, "--out", out.to_str().unwrap()], &[]);
+        assert_eq!(g.status.code(), Some(2), "{prompt}: {}", text(&g));
+        let err = String::from_utf8_lossy(&g.stderr);
+        assert!(
+            err.contains("understood no room and no object")
+                && err.contains("--llm-base-url")
+                && err.contains("--lenient"),
+            "{err}"
+        );
+        assert!(!out.exists());
+    }
+    let lenient = root.path().join("lenient");
+    let g = scenesmith(
+        &[
+            "generate",
+            "asdkjh qwpeoiru zxmcnv",
+            "--out",
+            lenient.to_str().unwrap(),
+            "--lenient",
+            "--no-render",
+            "--export",
+            "none",
+            "--json",
+        ],
+        &[],
+    );
+    assert!(g.status.success(), "{}", text(&g));
+    let summary: serde_json::Value = serde_json::from_slice(&g.stdout).unwrap();
+    assert_eq!(summary["rooms"].as_array().map(Vec::len), Some(1));
+    assert!(lenient.join("scene.json").is_file());
+}
+
 #[test]
 fn unwritable_output_is_a_clear_error() {
     let root = tempfile::tempdir().unwrap();

@@ -72,3 +72,53 @@ impl NounReport {
         out
     }
 }
+
+/// The report in a few lines for a terminal: how many nouns were read, and every noun that
+/// was routed, stood in or was dropped, with why.
+pub fn summary_lines(nouns: &[NounReport]) -> Vec<String> {
+    let count = |s: NounStatus| nouns.iter().filter(|n| n.status == s).count();
+    let mut out = vec![format!(
+        "nouns read: {} ({} rooms, {} in the lexicon, {} routed, {} stand-ins, {} unknown, {} \
+         dropped)",
+        nouns.len(),
+        count(NounStatus::Room),
+        count(NounStatus::Lexicon),
+        count(NounStatus::Routed),
+        count(NounStatus::StandIn),
+        count(NounStatus::Unknown),
+        count(NounStatus::Dropped)
+    )];
+    for status in [
+        NounStatus::Routed,
+        NounStatus::StandIn,
+        NounStatus::Unknown,
+        NounStatus::Dropped,
+    ] {
+        let items: Vec<String> = nouns
+            .iter()
+            .filter(|n| n.status == status)
+            .map(NounReport::line)
+            .collect();
+        if !items.is_empty() {
+            out.push(format!("  {}: {}", status.as_str(), items.join("; ")));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_name_what_was_routed_and_dropped() {
+        let r = crate::prompt::read(
+            "A living room with a samovar on a table, despite the unease of the stylish guests.",
+        );
+        let lines = summary_lines(&r.nouns);
+        assert!(lines[0].starts_with("nouns read:"), "{lines:?}");
+        let all = lines.join("\n");
+        assert!(all.contains("unease") && all.contains("dropped"), "{all}");
+        assert!(all.contains("samovar ->"), "{all}");
+    }
+}

@@ -205,6 +205,10 @@ pub struct RoomPlan {
     pub excluded: Vec<String>,
     /// Nouns the prompt named that no lexicon entry knows (planned anyway, reported).
     pub unknown: Vec<String>,
+    /// What the plan capped, in words for the user ("1000 chairs asked for, 120 planned:
+    /// ...").
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub notes: Vec<String>,
     /// Room-type key the plan was made for.
     #[serde(default)]
     pub room_type: String,

@@ -286,6 +286,13 @@ impl Builder<'_> {
                 count = n.max(1);
                 at_least = a;
             }
+            if count > MAX_COUNT {
+                self.plan.notes.push(format!(
+                    "{count} {} asked for, {MAX_COUNT} planned: a room plans at most {MAX_COUNT} \
+                     of one kind of object",
+                    m.noun
+                ));
+            }
             let count = count.clamp(1, MAX_COUNT);
             let support = m.support;
             let description = self.describe(m, support);
