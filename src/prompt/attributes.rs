@@ -239,6 +239,18 @@ pub(crate) fn modifier_at(
         // A style word that is also the start of a longer noun ("robot arm") is the noun.
         let noun_len = lex.noun_at(tokens, at).map_or(0, |(l, ..)| l);
         if noun_len <= n {
+            // "Jurassic Park": a capitalised style word begins a proper name.
+            let mut n = n;
+            while tokens[at].capitalized()
+                && tokens.get(at + n).is_some_and(|u| {
+                    u.is_word()
+                        && u.capitalized()
+                        && !lex.is_function_word(&u.text)
+                        && lex.noun_at(tokens, at + n).is_none()
+                })
+            {
+                n += 1;
+            }
             let mut len = n;
             if tokens
                 .get(at + n)
@@ -309,23 +321,9 @@ pub(crate) fn modifier_at(
     let next_wordish = tokens
         .get(at + 1)
         .is_some_and(|u| u.is_word() && !lex.is_function_word(&u.text));
-    // WordNet's adjectives: "stylish", "somber"; one that is also a noun ("antique",
-    // "quiet") modifies when a noun follows.
-    let wn = super::wordnet::wordnet();
-    if wn.has_pos(w, super::wordnet::Pos::Adj) && !lex.is_non_object(w) {
-        let noun_too = wn.has_pos(w, super::wordnet::Pos::Noun);
-        let noun_next = next_wordish
-            && tokens.get(at + 1).is_some_and(|u| {
-                wn.has_pos(&u.text, super::wordnet::Pos::Noun)
-                    || lex.noun_at(tokens, at + 1).is_some()
-                    || kb.room_type_at(tokens, at + 1).is_some()
-            });
-        if !noun_too || noun_next {
-            return Some(single(t, ModKind::Adjective(w.to_string())));
-        }
-    }
     // Participles ("scattered", "folded", "hanging"), unless the word is a noun WordNet
     // knows as written ("flowerbed", "seaweed", "building").
+    let wn = super::wordnet::wordnet();
     let noun_lemma = wn.is_lemma(w, super::wordnet::Pos::Noun);
     if w.contains('-')
         || (w.len() > 4 && w.ends_with("ed") && !noun_lemma)
@@ -353,6 +351,20 @@ pub(crate) fn modifier_at(
                 kind: ModKind::Style(raw_join(&tokens[at..at + n])),
                 text: raw_join(&tokens[at..at + n]),
             });
+        }
+    }
+    // WordNet's adjectives: "stylish", "somber"; one that is also a noun ("antique",
+    // "quiet") modifies when a noun follows.
+    if wn.has_pos(w, super::wordnet::Pos::Adj) && !lex.is_non_object(w) {
+        let noun_too = wn.has_pos(w, super::wordnet::Pos::Noun);
+        let noun_next = next_wordish
+            && tokens.get(at + 1).is_some_and(|u| {
+                wn.has_pos(&u.text, super::wordnet::Pos::Noun)
+                    || lex.noun_at(tokens, at + 1).is_some()
+                    || kb.room_type_at(tokens, at + 1).is_some()
+            });
+        if !noun_too || noun_next {
+            return Some(single(t, ModKind::Adjective(w.to_string())));
         }
     }
     None

@@ -92,7 +92,6 @@ struct WordsFile {
     colors: BTreeMap<String, String>,
     materials: HashMap<String, String>,
     style_suffixes: Vec<String>,
-    styles: HashMap<String, StyleWord>,
     feature_nouns: Vec<String>,
     non_objects: Vec<String>,
     irregular_plurals: HashMap<String, String>,
@@ -165,8 +164,9 @@ pub struct Lexicon {
 pub const MAX_PHRASE: usize = 5;
 
 impl Lexicon {
-    /// Builds a lexicon from the two JSON documents.
-    pub fn parse(words: &str, objects: &str) -> Result<Lexicon, LexiconError> {
+    /// Builds a lexicon from the two JSON documents and the asset attribute file (whose
+    /// styles' words are the style words).
+    pub fn parse(words: &str, objects: &str, styles: &str) -> Result<Lexicon, LexiconError> {
         let w: WordsFile = serde_json::from_str(words).map_err(|source| LexiconError::Parse {
             file: "lexicon/words.json",
             source,
@@ -218,7 +218,7 @@ impl Lexicon {
             colors: w.colors,
             materials: w.materials,
             style_suffixes: set(w.style_suffixes),
-            styles: w.styles,
+            styles: style_words(styles)?,
             feature_nouns: set(w.feature_nouns),
             non_objects: set(w.non_objects),
             irregular: w.irregular_plurals,
@@ -536,6 +536,46 @@ impl Lexicon {
     }
 }
 
+#[derive(Debug, Deserialize)]
+struct StyleFile {
+    styles: BTreeMap<String, StyleEntry>,
+}
+
+#[derive(Debug, Deserialize)]
+struct StyleEntry {
+    words: Vec<String>,
+}
+
+/// The style words of the asset styles (one home: `src/data/asset_attributes.json`); themes
+/// the table does not name are read from markers ("pirate-themed", "inspired by ...") and
+/// proper names, without any table.
+fn style_words(text: &str) -> Result<HashMap<String, StyleWord>, LexiconError> {
+    let f: StyleFile = serde_json::from_str(text).map_err(|source| LexiconError::Parse {
+        file: "asset_attributes.json",
+        source,
+    })?;
+    let wn = super::wordnet::wordnet();
+    let mut out = HashMap::new();
+    for e in f.styles.values() {
+        for w in &e.words {
+            // A word that is only an adjective ("eclectic") or no ordinary word at all
+            // ("steampunk") cannot be misread; one that is also a noun or verb ("space",
+            // "frozen", "modern") is a style only when capitalised.
+            let ordinary = w.split(' ').any(|x| {
+                wn.has_pos(x, super::wordnet::Pos::Noun) || wn.has_pos(x, super::wordnet::Pos::Verb)
+            });
+            out.insert(
+                w.clone(),
+                StyleWord {
+                    kind: "style".to_string(),
+                    cap: ordinary,
+                },
+            );
+        }
+    }
+    Ok(out)
+}
+
 /// `len` consecutive word tokens at `at` (None when a punctuation token or the end intervenes).
 pub fn words_at(tokens: &[Token], at: usize, len: usize) -> Option<Vec<&str>> {
     let slice = tokens.get(at..at + len)?;
@@ -580,6 +620,7 @@ pub fn lexicon() -> &'static Lexicon {
         Lexicon::parse(
             include_str!("../data/lexicon/words.json"),
             include_str!("../data/lexicon/objects.json"),
+            include_str!("../data/asset_attributes.json"),
         )
         .unwrap_or_default()
     })
@@ -595,6 +636,7 @@ mod tests {
         let r = Lexicon::parse(
             include_str!("../data/lexicon/words.json"),
             include_str!("../data/lexicon/objects.json"),
+            include_str!("../data/asset_attributes.json"),
         );
         let lex = r.unwrap();
         assert!(lex.objects.len() >= 400, "{} nouns", lex.objects.len());
