@@ -104,8 +104,14 @@ pub(crate) fn chunk_sentence(
             // After "with", "of", "including", a preposition or "has": an object slot.
             || matches!(
                 out.last().map(|c| &c.item),
-                Some(Item::With | Item::Of | Item::Including | Item::Prep(_))
+                Some(Item::With | Item::Including | Item::Prep(_))
             )
+            // "a vase of flowers" lists contents; "a love of greenery" does not.
+            || (matches!(out.last().map(|c| &c.item), Some(Item::Of))
+                && !matches!(
+                    out.iter().rev().nth(1).map(|c| &c.item),
+                    Some(Item::Np(np)) if matches!(np.head, Head::NonObject)
+                ))
             || matches!(out.last().map(|c| &c.item), Some(Item::Verb(class, _)) if matches!(class.as_str(), "possess" | "display" | "fill_with"));
         // Fixed phrases first.
         if w == "in" && next == Some("total") {

@@ -559,8 +559,14 @@ pub(crate) fn parse_np(
         while at(k).is_some_and(|x| lex.is_non_object(x)) {
             k += 1;
         }
-        np.head = Head::NonObject;
-        return Some((np, k));
+        // "a coffee grinder": a word that is never an object may modify a noun after it.
+        let noun_after = k < end
+            && compound_word(lex, kb, tokens, k)
+            && (lex.noun_at(tokens, k).is_some() || at(k).is_some_and(ground::is_noun));
+        if !noun_after {
+            np.head = Head::NonObject;
+            return Some((np, k));
+        }
     }
     // Open vocabulary: words the lexicon does not know, the last a noun WordNet grounds.
     if evidence || in_list {
@@ -801,10 +807,21 @@ fn compound_tail(
 ) -> Option<(usize, Grounded)> {
     let mut len = 0;
     let wn = super::wordnet::wordnet();
+    // "cake stand", "music stand": a noun in its base form, even one the verb table lists.
+    let tail_word = |k: usize| {
+        let x = tokens[k].text.as_str();
+        compound_word(lex, kb, tokens, k)
+            || (lex.verb(x).is_some()
+                && wn.is_lemma(x, super::wordnet::Pos::Noun)
+                && !x.ends_with('s')
+                && !x.ends_with("ed")
+                && !x.ends_with("ing")
+                && lex.preposition_at(tokens, k).is_none())
+    };
     while len < 2
         && at + len < end
         && lex.noun_at(tokens, at + len).is_none()
-        && compound_word(lex, kb, tokens, at + len)
+        && tail_word(at + len)
         && ground::is_noun(&tokens[at + len].text)
         // "A sturdy squat rack anchors the centre": a verb in -s after "a ...".
         && !(singular_det

@@ -506,6 +506,25 @@ impl<'a> Interp<'a> {
             Head::NonObject => {
                 if np.number.is_some() && np.attrs.modifiers.is_empty() && np.det.is_none() {
                     c.bare_number = np.number;
+                    // "Tall bookcases, at least eight of them, ...": the count of the plural
+                    // phrase before.
+                    let of_them = matches!(chunks.get(k + 1).map(|x| &x.item), Some(Item::Of))
+                        && matches!(
+                            chunks.get(k + 2).map(|x| &x.item),
+                            Some(Item::Np(p)) if p.head == Head::Pronoun(super::chunk::Pronoun::Them)
+                        );
+                    if of_them
+                        && let Some(m) =
+                            self.recent(|m| !m.negated && is_plural_count(m.count), &[])
+                    {
+                        let n = np.number.unwrap_or(1);
+                        self.mentions[m].count = match np.quant.as_deref() {
+                            Some("at_least") => Count::AtLeast(n),
+                            Some("more_than" | "more_than_number") => Count::AtLeast(n + 1),
+                            _ => Count::Exactly(n),
+                        };
+                        c.skip_np = false;
+                    }
                 }
                 if c.verb.is_none() && c.subject.is_empty() && np.det.is_some() {
                     // "A seating area in the center features ...": a zone.
