@@ -465,14 +465,7 @@ pub(crate) fn parse_np(
             if let Some(w) = written.last_mut() {
                 *w = head.singular.clone();
             }
-            let noun = written.join(" ");
-            np.report = Some(head.report(&noun));
-            np.head = Head::Object {
-                entry: None,
-                noun: noun.clone(),
-                canonical: noun,
-                head_entry: head.family_entry,
-            };
+            np.set_grounded(written.join(" "), &head);
             return Some((np, last + 1));
         }
         // A part noun with an ordinal or "top": "the top shelf", "the second shelf".
@@ -638,13 +631,7 @@ pub(crate) fn parse_np(
             } => {
                 np.attrs.modifiers.extend(adjectives);
                 np.plural = plural;
-                np.report = Some(head.report(&noun));
-                np.head = Head::Object {
-                    entry: None,
-                    noun: noun.clone(),
-                    canonical: noun,
-                    head_entry: head.family_entry,
-                };
+                np.set_grounded(noun, &head);
                 return Some((np, next));
             }
             Open::Dropped { next, report } => {
@@ -677,6 +664,19 @@ struct Grounded {
     via: Vec<String>,
     /// No dictionary knows the word.
     unknown: bool,
+}
+
+impl Np {
+    /// The head is `noun`, which the lexicon does not know and WordNet grounded as `head`.
+    fn set_grounded(&mut self, noun: String, head: &Grounded) {
+        self.report = Some(head.report(&noun));
+        self.head = Head::Object {
+            entry: None,
+            noun: noun.clone(),
+            canonical: noun,
+            head_entry: head.family_entry,
+        };
+    }
 }
 
 impl Grounded {
