@@ -70,9 +70,9 @@ fn furniture_script() -> Script {
         tool_calls(&[
             (
                 "place_around",
-                "{\"parent\": \"table_0\", \"description\": \"chair\", \"count\": 2}",
+                "{\"parent\": \"dining_table_0\", \"description\": \"chair\", \"count\": 2}",
             ),
-            ("teleport_object", "{\"id\": \"table_0\"}"),
+            ("teleport_object", "{\"id\": \"dining_table_0\"}"),
             (
                 "place_object",
                 "{\"description\": \"chair\", \"x\": \"left\"}",
@@ -104,7 +104,7 @@ fn furniture_script() -> Script {
             .collect();
         tool_calls(&[(
             "submit_critique",
-            &json!({"scores": scores, "issues": [{"objects": ["table_0"], "description": "fine"}]})
+            &json!({"scores": scores, "issues": [{"objects": ["dining_table_0"], "description": "fine"}]})
                 .to_string(),
         )])
     };
@@ -145,7 +145,7 @@ fn scripted_designer_critic_orchestrator_keep_the_best_checkpoint() {
             .count()
     };
     // The best checkpoint (first design, scores 8) is kept: table and two chairs, no shelf.
-    assert_eq!(count("table"), 1);
+    assert_eq!(count("dining_table"), 1);
     assert_eq!(
         count("chair"),
         2,
