@@ -389,7 +389,7 @@ pub fn build_scene_with(
                 .scene
                 .objects
                 .iter()
-                .filter(|o| crate::stages::StageState::names(&noun, &o.category))
+                .filter(|o| crate::stages::StageState::is(&state.scene, &noun, o))
                 .count() as u32;
             (noun, wanted, present)
         })

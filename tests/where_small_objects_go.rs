@@ -67,7 +67,8 @@ fn bins_the_prompt_puts_on_the_floor_are_floor_bins() {
     assert_eq!(support_sibling("toy_bin", SupportClass::Floor), None);
     assert!(StageState::names("storage bin", "toy_bin"));
     assert!(!StageState::names("storage bin", "laundry_basket"));
-    // Two bins on the floor holding toys: both built, the toys inside them.
+    // Two bins on the floor holding toys: both built (as the library's floor bins; the objects
+    // are called what the prompt calls them), the toys inside them.
     let prompt = "A playroom with two bins. One bin contains 2 teddy bears. The other bin \
                   contains at least 5 wooden blocks.";
     let (state, _) = build_scene(prompt, 1, "floor_bins", &Backend::Builtin).unwrap();
@@ -75,7 +76,7 @@ fn bins_the_prompt_puts_on_the_floor_are_floor_bins() {
         .scene
         .objects
         .iter()
-        .filter(|o| o.category == "toy_bin")
+        .filter(|o| state.scene.built_as(o) == "toy_bin")
         .map(|o| o.id.as_str())
         .collect();
     assert_eq!(bins.len(), 2, "{bins:?}");
@@ -83,7 +84,7 @@ fn bins_the_prompt_puts_on_the_floor_are_floor_bins() {
         .scene
         .objects
         .iter()
-        .filter(|o| o.category == "wooden_block")
+        .filter(|o| state.scene.built_as(o) == "wooden_block")
         .filter(|o| matches!(&o.support, Support::Object { parent, .. } if bins.contains(&parent.as_str())))
         .count();
     assert!(
@@ -96,7 +97,7 @@ fn bins_the_prompt_puts_on_the_floor_are_floor_bins() {
         .scene
         .objects
         .iter()
-        .filter(|o| o.category == "stuffed_animal")
+        .filter(|o| state.scene.built_as(o) == "stuffed_animal")
         .count();
     assert_eq!(bears, 2);
 }

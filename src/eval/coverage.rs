@@ -61,9 +61,7 @@ pub fn plan_coverage(reading: &Reading, scene: &Scene) -> PlanCoverage {
             .objects
             .iter()
             .filter(|o| o.kind != ObjectKind::Architecture)
-            .filter(|o| {
-                StageState::names(noun, &o.category) || described.contains(&o.category.as_str())
-            })
+            .filter(|o| StageState::is(scene, noun, o) || described.contains(&scene.built_as(o)))
             .count() as u32
     };
     // Within a room, repeated mentions of a category ("a table ... the table") merge into the

@@ -201,7 +201,7 @@ impl Designer<StageState> for BuiltinCeilingDesigner {
             if let Arrangement::Above { target } = &want.arrangement {
                 let ids: Vec<String> = state
                     .room_objects()
-                    .filter(|o| StageState::names(target, &o.category))
+                    .filter(|o| StageState::is(&state.scene.scene, target, o))
                     .map(|o| o.id.clone())
                     .collect();
                 for t in ids {

@@ -104,7 +104,7 @@ impl BuiltinFurnitureDesigner {
     fn present(state: &StageState, noun: &str) -> Vec<String> {
         state
             .room_objects()
-            .filter(|o| StageState::names(noun, &o.category))
+            .filter(|o| StageState::is(&state.scene.scene, noun, o))
             .map(|o| o.id.clone())
             .collect()
     }
@@ -198,7 +198,9 @@ impl BuiltinFurnitureDesigner {
             let Some(obj) = state.scene.scene.object(&id).cloned() else {
                 continue;
             };
-            let is_explicit = explicit.iter().any(|n| StageState::names(n, &obj.category));
+            let is_explicit = explicit
+                .iter()
+                .any(|n| StageState::is(&state.scene.scene, n, &obj));
             let _ = cx.call(state, Role::Designer, "remove_object", json!({"id": id}));
             if is_explicit {
                 // Re-place a requested piece somewhere else; drop a default one.

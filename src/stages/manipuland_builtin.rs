@@ -24,7 +24,8 @@ fn count_on(state: &StageState, entity: &str, want: &Want) -> u32 {
         .iter()
         .filter(|id| {
             state.scene.scene.object(id).is_some_and(|o| {
-                built == Some(o.category.as_str()) || StageState::names(&want.noun, &o.category)
+                built == Some(state.scene.scene.built_as(o))
+                    || StageState::is(&state.scene.scene, &want.noun, o)
             })
         })
         .count() as u32
@@ -108,7 +109,7 @@ impl BuiltinManipulandDesigner {
                 // into it, not into the first container of the room.
                 let mut containers: Vec<String> = state
                     .room_objects()
-                    .filter(|o| StageState::names(parent, &o.category))
+                    .filter(|o| StageState::is(&state.scene.scene, parent, o))
                     .map(|o| o.id.clone())
                     .collect();
                 containers.sort_by_key(|c| c != entity);

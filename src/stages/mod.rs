@@ -294,6 +294,12 @@ impl StageState {
                 .is_some_and(|u| crate::scene::sanitize_name(&u) == category)
     }
 
+    /// True when `o` in `scene` is what `noun` asks for, by its name (the prompt's,
+    /// "manicure_table") or by the library category its asset is built as (`table`).
+    pub fn is(scene: &crate::scene::Scene, noun: &str, o: &SceneObject) -> bool {
+        StageState::names(noun, &o.category) || StageState::names(noun, scene.built_as(o))
+    }
+
     /// Builds (or reuses) the asset for `description` through the asset router (attributes
     /// such as "red oak" choose materials; an unknown noun gets a generic shape of the stage's
     /// support class, or an external mesh when one is configured), refusing objects of another

@@ -279,7 +279,7 @@ fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String,
                 .get(&o.asset)
                 .is_some_and(|a| !a.surfaces.is_empty())
         })
-        .map(|o| (o.id.clone(), o.category.clone()))
+        .map(|o| (o.id.clone(), scene.scene.built_as(o).to_string()))
         .collect();
     let mut per: BTreeMap<String, RoomPlan> = BTreeMap::new();
     for group in &plan.surfaces {

@@ -357,7 +357,7 @@ pub fn toolbox() -> Toolbox<StageState> {
 fn targets(state: &StageState, noun: &str) -> Vec<String> {
     state
         .room_objects()
-        .filter(|o| StageState::names(noun, &o.category) && o.kind == ObjectKind::Furniture)
+        .filter(|o| StageState::is(&state.scene.scene, noun, o) && o.kind == ObjectKind::Furniture)
         .map(|o| o.id.clone())
         .collect()
 }

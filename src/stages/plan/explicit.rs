@@ -7,6 +7,7 @@ use super::{
     Arrangement, Builder, MAX_COUNT, SurfaceItem, Want, covers, fill_factor, is_seat,
     is_table_like, pick, place_to_arrangement,
 };
+use crate::assets::router::parse::main_categories;
 use crate::knowledge::Place;
 use crate::prompt::{self, Count, GroupKind, Mention, Per, RelationKind, Support, Target};
 
@@ -109,7 +110,7 @@ impl Builder<'_> {
     }
 
     pub(super) fn describe(&self, m: &Mention, support: Support) -> String {
-        let d = m.description();
+        let d = named_description(m);
         if m.attributes.styles.is_empty()
             && support != Support::Surface
             && let Some(s) = self.styles.first()
@@ -443,4 +444,23 @@ impl Builder<'_> {
 fn same_build(a: &str, b: &str) -> bool {
     let of = crate::stages::StageState::category_of;
     of(a).is_some_and(|c| of(b) == Some(c))
+}
+
+/// A mention's description for the router, with the name the prompt gives it ("bedside
+/// table", "bentwood chair") when the router builds that name as it builds the canonical noun,
+/// so the object is called what the prompt calls it; else with the canonical noun.
+fn named_description(m: &Mention) -> String {
+    if m.noun == m.category {
+        return m.description();
+    }
+    let same = main_categories(&m.noun).first().is_some()
+        && main_categories(&m.noun).first() == main_categories(&m.category).first();
+    if !same {
+        return m.description();
+    }
+    let name_words: Vec<&str> = m.noun.split(' ').collect();
+    let mut a = m.attributes.clone();
+    a.modifiers
+        .retain(|w| !name_words.contains(&w.to_lowercase().as_str()));
+    a.describe(&m.noun)
 }
