@@ -486,3 +486,14 @@ fn reader_table_on_second_held_out_set() {
     );
     assert_eq!(s.rooms_right, s.prompts, "room structure");
 }
+
+/// Refusing prompts it cannot read must not refuse English ones: every dev prompt is
+/// understood (a room word or an object noun grounded, English function words present).
+#[test]
+fn every_dev_prompt_is_understood() {
+    let (prompts, _) = fixtures();
+    for (id, text) in &prompts {
+        let r = prompt::read(text);
+        assert!(r.understood(), "{id}: {}", r.understanding());
+    }
+}
