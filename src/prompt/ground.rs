@@ -260,6 +260,11 @@ pub struct Family {
 
 /// The nearest noun `known` accepts along the hypernyms of `lemma`'s senses that pass
 /// `sense_ok` (heaviest sense first on ties), never above the `family_stop` synsets.
+/// Farthest hypernym step a family may be from the noun: beyond it the kinship is too loose
+/// to build from (a bell is no kind of game controller, though "doorbell > push button >
+/// switch > control" leads there).
+const MAX_FAMILY_STEPS: u32 = 2;
+
 fn nearest(lemma: &str, senses: &[SynsetId], known: &dyn Fn(&str) -> bool) -> Option<Family> {
     let wn = wordnet();
     let r = rules();
@@ -270,7 +275,7 @@ fn nearest(lemma: &str, senses: &[SynsetId], known: &dyn Fn(&str) -> bool) -> Op
         let mut seen: HashSet<SynsetId> = HashSet::new();
         queue.push_back((start, 0, Vec::new()));
         while let Some((s, d, path)) = queue.pop_front() {
-            if !seen.insert(s) || r.family_stop.contains(&s) {
+            if !seen.insert(s) || r.family_stop.contains(&s) || d > MAX_FAMILY_STEPS {
                 continue;
             }
             if best.as_ref().is_some_and(|(bd, _, _)| d > *bd) {

@@ -425,7 +425,8 @@ pub(crate) fn parse_np(
             && start + n < end
             && let Some((n2, e2, p2)) = lex.noun_at(tokens, start + n)
             && start + n + n2 <= end
-            && lex.verb(&tokens[start + n].text).is_none()
+            // "glass display case": a longer noun is no verb ("display").
+            && (n2 >= 2 || lex.verb(&tokens[start + n].text).is_none())
         {
             let text: Vec<&str> = tokens[start..start + n]
                 .iter()

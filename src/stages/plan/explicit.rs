@@ -322,10 +322,12 @@ impl Builder<'_> {
                     .lookup(&m.category)
                     .and_then(|e| e.rests_on.iter().find(|p| p.ends_with("stand")).cloned())
                     .unwrap_or_else(|| STAND.to_string());
+                // One stand carries one or two big things (a TV, a printer); a crowd of small
+                // ones ("dozens of canvases") shares a couple.
                 self.plan.furniture.push(Want {
                     noun: stand.clone(),
                     description: stand.clone(),
-                    count,
+                    count: count.min(2),
                     explicit: false,
                     at_least: false,
                     arrangement,
