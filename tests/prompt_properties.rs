@@ -45,6 +45,8 @@ fn special(w: &str) -> bool {
         || lex.is_adjective(w)
         || lex.ordinal(w).is_some()
         || toks.len() != 1
+        // Class nouns ("artefact", "fruit") stand for their members by design.
+        || lex.lookup(w).is_some_and(|e| e.generic)
         || knowledge().room_type_of(w).is_some()
         || knowledge().room_type_of(&prompt::singular(w)).is_some()
 }
