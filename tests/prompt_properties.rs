@@ -163,7 +163,7 @@ fn pick(v: &[String], i: usize) -> &str {
     &v[i % v.len()]
 }
 
-fn mentions_of<'a>(r: &'a Reading, noun: &str) -> Vec<usize> {
+fn mentions_of(r: &Reading, noun: &str) -> Vec<usize> {
     (0..r.mentions.len())
         .filter(|&i| {
             let m = &r.mentions[i];

@@ -286,11 +286,24 @@ pub(crate) fn parse_np(
         });
         return Some((np, j));
     }
-    // Group words: "a stack of", "pairs of".
+    // Group words: "a stack of", "pairs of"; and any word the lexicon does not know as an
+    // object before "of" and a plural noun ("a tangle of cables", "an array of candles"):
+    // the things are the plural noun, the word says how they lie.
+    let partitive = |w: &str| {
+        lex.noun_at(tokens, j).is_none()
+            && !lex.is_function_word(w)
+            && lex.quantifier_at(tokens, j).is_none()
+            && ground::is_noun(w)
+            && word(tokens, j + 2).is_some_and(|x| {
+                lex.is_plural(x) && (lex.noun_at(tokens, j + 2).is_some() || ground::is_noun(x))
+            })
+    };
     if let Some(w) = at(j)
-        && let Some(class) = lex.group(w)
         && at(j + 1) == Some("of")
-        && let Some(kind) = GroupKind::from_class(class)
+        && let Some(kind) = lex
+            .group(w)
+            .and_then(GroupKind::from_class)
+            .or_else(|| partitive(w).then_some(GroupKind::Pile))
     {
         np.group = Some(kind);
         j += 2;

@@ -185,6 +185,24 @@ fn item_rotation(yaw_deg: f64, lay_flat: bool) -> UnitQuaternion<f64> {
     }
 }
 
+/// A size for an item whose footprint overflows `s` that its category allows (no smaller
+/// than the category's minimum) and that fits the surface with a small margin; `None` when it
+/// fits as it is or no allowed size does.
+fn shrunk_to_fit(s: &SurfaceRef, rec: &AssetRecord, rot: &UnitQuaternion<f64>) -> Option<[f64; 3]> {
+    let (lo, hi) = rotated_bounds(rec, rot);
+    let (w, d) = (hi[0] - lo[0], hi[1] - lo[1]);
+    let (sw, sd) = (s.surface.size[0] * 0.97, s.surface.size[1] * 0.97);
+    if w <= sw && d <= sd {
+        return None;
+    }
+    let prior = crate::assets::procedural::prior(&rec.category)?;
+    let factor = (sw / w).min(sd / d);
+    let [bx, by, bz] = [0, 1, 2].map(|i| rec.bounds[1][i] - rec.bounds[0][i]);
+    let size = [bx * factor, by * factor, bz * factor];
+    let allowed = (0..3).all(|i| size[i] >= prior.min[i] - 1e-9);
+    allowed.then_some(size)
+}
+
 /// Where an item goes on a surface; `None` when it does not fit.
 #[allow(clippy::too_many_arguments)]
 fn fit(
@@ -390,22 +408,22 @@ fn result_for(
 
 fn place_on_surface(state: &mut StageState, a: PlaceArgs) -> Result<PlaceResult, ToolError> {
     let s = find_surface(state, &a.surface)?;
-    let routed = state.route_asset(&a.description, None)?;
-    let rec = state.scene.scene.assets[&routed.asset].clone();
+    let mut routed = state.route_asset(&a.description, None)?;
+    let mut rec = state.scene.scene.assets[&routed.asset].clone();
     let at = match (a.u, a.v) {
         (Some(u), Some(v)) => Some((u, v)),
         (None, None) => None,
         _ => return Err(ToolError::bad_args("give both u and v, or neither")),
     };
-    let (pose, _) = fit(
-        state,
-        &s,
-        &rec,
-        &item_rotation(a.yaw_deg, a.lay_flat),
-        at,
-        &[],
-    )
-    .map_err(ToolError::failed)?;
+    let rot = item_rotation(a.yaw_deg, a.lay_flat);
+    // A typical-sized item a little larger than the surface ("a printer on a small side
+    // table"): the same item at a size that fits, within its category's range.
+    if let Some(size) = shrunk_to_fit(&s, &rec, &rot) {
+        let smaller = state.route_asset(&a.description, Some(size))?;
+        routed = smaller;
+        rec = state.scene.scene.assets[&routed.asset].clone();
+    }
+    let (pose, _) = fit(state, &s, &rec, &rot, at, &[]).map_err(ToolError::failed)?;
     let id = add_item(state, &routed, pose, &s.parent.id, &s.surface.id);
     result_for(state, &[id], routed.notes.clone())
 }

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use super::checkpoint::{CheckpointStore, NoCheckpoints};
-use super::plan::{RoomPlan, SurfaceWant, Want};
+use super::plan::{Arrangement, RoomPlan, SurfaceWant, Want};
 use super::{
     SceneState, StageKind, StageState, ceiling, furniture, furniture_builtin, manipuland,
     manipuland_builtin, wall,
@@ -329,6 +329,85 @@ fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String,
     per.into_iter().collect()
 }
 
+/// Most extra hosts tried for small objects their own furniture could not hold.
+const LEFTOVER_HOSTS: usize = 3;
+
+/// Furniture with a surface that may take leftovers: tables, desks and counters first.
+fn leftover_hosts(scene: &SceneState, room: &str) -> Vec<String> {
+    let mut hosts: Vec<(String, bool)> = scene
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.room == room && o.kind == ObjectKind::Furniture)
+        .filter(|o| {
+            scene
+                .scene
+                .assets
+                .get(&o.asset)
+                .is_some_and(|a| !a.surfaces.is_empty())
+        })
+        .map(|o| {
+            let cat = scene.scene.built_as(o);
+            let tableish = ["table", "desk", "counter", "sideboard", "console"]
+                .iter()
+                .any(|t| cat.contains(t));
+            (o.id.clone(), tableish)
+        })
+        .filter(|(_, tableish)| *tableish)
+        .collect();
+    hosts.sort_by_key(|(id, _)| id.clone());
+    hosts
+        .into_iter()
+        .take(LEFTOVER_HOSTS)
+        .map(|(id, _)| id)
+        .collect()
+}
+
+/// The prompt's small objects still missing from the room, as a plan for `host` (`None`
+/// when nothing is missing).
+fn leftover_plan(scene: &SceneState, room: &str, plan: &RoomPlan, host: &str) -> Option<RoomPlan> {
+    let present = |w: &Want| {
+        scene
+            .scene
+            .objects
+            .iter()
+            .filter(|o| o.room == room && o.kind == ObjectKind::Manipuland)
+            .filter(|o| super::StageState::is(&scene.scene, &w.noun, o))
+            .count() as u32
+    };
+    let items: Vec<Want> = plan
+        .surfaces
+        .iter()
+        .flat_map(|g| g.items.iter())
+        .filter(|w| w.explicit && !matches!(w.arrangement, Arrangement::Inside { .. }))
+        .filter_map(|w| {
+            let missing = w.count.saturating_sub(present(w));
+            (missing > 0).then(|| Want {
+                count: missing,
+                arrangement: Arrangement::Free,
+                ..w.clone()
+            })
+        })
+        .collect();
+    if items.is_empty() {
+        return None;
+    }
+    let parent = scene
+        .scene
+        .object(host)
+        .map(|o| scene.scene.built_as(o).to_string())
+        .unwrap_or_default();
+    Some(RoomPlan {
+        excluded: plan.excluded.clone(),
+        surfaces: vec![SurfaceWant {
+            parent,
+            items,
+            place_settings: false,
+        }],
+        ..RoomPlan::default()
+    })
+}
+
 /// Runs every placement stage of one room.
 pub fn furnish_room(
     scene: SceneState,
@@ -360,10 +439,11 @@ pub fn furnish_room_resumable(
                     kind: StageKind,
                     entity: Option<String>,
                     plan: Arc<RoomPlan>,
+                    pass: &str,
                     rec: &mut Recorder<'_>|
      -> Result<SceneState, AgentError> {
         let key = match &entity {
-            Some(e) => format!("{room}/{}/{e}", kind.as_str()),
+            Some(e) => format!("{room}/{}/{e}{pass}", kind.as_str()),
             None => format!("{room}/{}", kind.as_str()),
         };
         if let Some((saved, saved_log)) = store.load(&key) {
@@ -375,7 +455,7 @@ pub fn furnish_room_resumable(
         Ok(out)
     };
     for kind in [StageKind::Furniture, StageKind::Wall, StageKind::Ceiling] {
-        scene = step(scene, kind, None, plan.clone(), &mut rec)?;
+        scene = step(scene, kind, None, plan.clone(), "", &mut rec)?;
     }
     for (entity, eplan) in entity_plans(&scene, room, &plan) {
         scene = step(
@@ -383,6 +463,22 @@ pub fn furnish_room_resumable(
             StageKind::Manipuland,
             Some(entity),
             Arc::new(eplan),
+            "",
+            &mut rec,
+        )?;
+    }
+    // What the prompt asked for and its furniture could not hold ("a printer on a small side
+    // table" that does not fit): the room's other surfaces, tables first, take it.
+    for host in leftover_hosts(&scene, room) {
+        let Some(left) = leftover_plan(&scene, room, &plan, &host) else {
+            break;
+        };
+        scene = step(
+            scene,
+            StageKind::Manipuland,
+            Some(host),
+            Arc::new(left),
+            "/leftover",
             &mut rec,
         )?;
     }

@@ -455,8 +455,9 @@ fn named_description(m: &Mention) -> String {
     if m.noun == m.category {
         return m.description();
     }
-    let same = main_categories(&m.noun).first().is_some()
-        && main_categories(&m.noun).first() == main_categories(&m.category).first();
+    let noun_categories = main_categories(&m.noun);
+    let same = !noun_categories.is_empty()
+        && noun_categories.first() == main_categories(&m.category).first();
     if !same {
         return m.description();
     }
