@@ -14,19 +14,16 @@ use crate::scene::ObjectKind;
 #[derive(Debug, Default)]
 pub struct BuiltinManipulandDesigner;
 
-/// How many of the plan item `want` rest (transitively) on `entity`.
-/// An object counts when its noun names it or when it is what the router builds for the
-/// item's description ("wooden play blocks" are the library's wooden blocks, a variant of the
-/// toy block the noun names).
+/// How many of the plan item `want` rest (transitively) on `entity`
+/// (`StageState::is_wanted`).
 fn count_on(state: &StageState, entity: &str, want: &Want) -> u32 {
-    let built = StageState::category_of(&want.description);
+    let scene = &state.scene.scene;
     items_on(state, entity)
         .iter()
         .filter(|id| {
-            state.scene.scene.object(id).is_some_and(|o| {
-                built == Some(state.scene.scene.built_as(o))
-                    || StageState::is(&state.scene.scene, &want.noun, o)
-            })
+            scene
+                .object(id)
+                .is_some_and(|o| StageState::is_wanted(scene, want, o))
         })
         .count() as u32
 }

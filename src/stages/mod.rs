@@ -300,6 +300,14 @@ impl StageState {
         StageState::names(noun, &o.category) || StageState::names(noun, scene.built_as(o))
     }
 
+    /// True when `o` counts for the plan item `want`: its noun names it, or it is what the
+    /// router builds for the item's description ("wooden play blocks" are the library's
+    /// wooden blocks, a variant of the toy block the noun names).
+    pub fn is_wanted(scene: &crate::scene::Scene, want: &plan::Want, o: &SceneObject) -> bool {
+        StageState::category_of(&want.description) == Some(scene.built_as(o))
+            || StageState::is(scene, &want.noun, o)
+    }
+
     /// Builds (or reuses) the asset for `description` through the asset router (attributes
     /// such as "red oak" choose materials; an unknown noun gets a generic shape of the stage's
     /// support class, or an external mesh when one is configured), refusing objects of another

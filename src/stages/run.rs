@@ -372,7 +372,7 @@ fn leftover_plan(scene: &SceneState, room: &str, plan: &RoomPlan, host: &str) ->
             .objects
             .iter()
             .filter(|o| o.room == room && o.kind == ObjectKind::Manipuland)
-            .filter(|o| super::StageState::is(&scene.scene, &w.noun, o))
+            .filter(|o| super::StageState::is_wanted(&scene.scene, w, o))
             .count() as u32
     };
     let items: Vec<Want> = plan
