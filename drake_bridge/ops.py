@@ -194,7 +194,7 @@ def op_collision_report(args):
             continue
         names.append(name)
     pairs = penetration_pairs(scene, ctx, threshold)
-    penetrating = sorted({p["a"] for p in pairs} | {p["b"] for p in pairs} - static)
+    penetrating = sorted(({p["a"] for p in pairs} | {p["b"] for p in pairs}) - static)
     depths = [p["depth"] for p in pairs]
     n = len(names)
     return {

@@ -1,13 +1,12 @@
 """Plants for simulation (settling, stability) with a chosen contact configuration, cached by
 file content and configuration; plus the pose helpers the physics ops share.
 
-Contact choice, measured on this machine (see README, "Physics"): under point contact a convex
-box resting on a face gets one contact point per pair and keeps rocking (1 cm/s, 0.3 rad/s after
-5 s; a three-box stack drifts 16 mm and turns 0.25 rad), so nothing ever comes to rest.
-Compliant hydroelastic contact on every geometry rests exactly (velocities ~1e-9) with <= 0.2 mm
-overlap at a modulus of 1e8 Pa, at ~1.3-3x the cost per step; with stop-at-rest it is the faster
-of the two. So "hydroelastic" is the default here; "point" reproduces Drake's behaviour on the
-files as written (and ignores the hydroelastic keys).
+The bridge injects no contact model: the scene files declare theirs (every collision geometry
+compliant hydroelastic, modulus 1e8 Pa, Hunt-Crossley dissipation >= 10 s/m; see README,
+"Physics"). "as_written" loads them into Drake's default plant (`MultibodyPlantConfig()` with
+the requested time step: hydroelastic with point fallback, Drake's default discrete contact
+approximation), exactly as a user who follows the README does. "point" is SceneEval's protocol
+(point contact on the same files), for comparison with published numbers.
 """
 
 import os
@@ -15,27 +14,22 @@ from collections import OrderedDict
 
 import numpy as np
 from pydrake.all import (
-    AddCompliantHydroelasticProperties,
     DiagramBuilder,
     LoadModelDirectives,
     Parser,
     ProcessModelDirectives,
-    ProximityProperties,
     RigidTransform,
 )
 from pydrake.common.eigen_geometry import Quaternion
-from pydrake.geometry import Role, RoleAssign
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 
 from drake_bridge.errors import BadRequest, ModelError
 from drake_bridge.plant_cache import LoadedScene, _digest, _file_arg
 
-#: Defaults of the `contact` argument.
+#: Defaults of the `contact` argument (`approximation` None: Drake's default).
 DEFAULT_CONTACT = {
-    "model": "hydroelastic",
-    "hydroelastic_modulus": 1e8,
-    "min_dissipation": 10.0,
-    "approximation": "lagged",
+    "model": "as_written",
+    "approximation": None,
 }
 
 
@@ -48,16 +42,10 @@ def contact_config(args):
     if unknown:
         raise BadRequest(f"unknown contact keys {sorted(unknown)}; known: {sorted(DEFAULT_CONTACT)}")
     cfg = dict(DEFAULT_CONTACT, **given)
-    if cfg["model"] not in ("hydroelastic", "point"):
-        raise BadRequest("contact.model must be 'hydroelastic' or 'point'")
-    if cfg["approximation"] not in ("lagged", "similar", "sap"):
-        raise BadRequest("contact.approximation must be lagged, similar or sap")
-    modulus = cfg["hydroelastic_modulus"]
-    if not isinstance(modulus, (int, float)) or modulus <= 0:
-        raise BadRequest("contact.hydroelastic_modulus must be a positive number of pascals")
-    d = cfg["min_dissipation"]
-    if not isinstance(d, (int, float)) or d < 0:
-        raise BadRequest("contact.min_dissipation must be a non-negative number of s/m")
+    if cfg["model"] not in ("as_written", "point"):
+        raise BadRequest("contact.model must be 'as_written' or 'point'")
+    if cfg["approximation"] not in (None, "lagged", "similar", "sap", "tamsi"):
+        raise BadRequest("contact.approximation must be null, lagged, similar, sap or tamsi")
     return cfg
 
 
@@ -77,34 +65,13 @@ def instance_name(plant, body):
     return plant.GetModelInstanceName(body.model_instance())
 
 
-def _assign_contact(plant, scene_graph, cfg):
-    """Makes every proximity geometry compliant hydroelastic (friction from the files is kept).
-
-    Hunt-Crossley dissipation is raised to at least `min_dissipation`: at the material table's
-    1 s/m a cube dropped 2 cm onto a table top kept rocking (3 mm/s, 0.1 rad/s) for good; from
-    4 s/m up it rests within 0.3 s, and 10 s/m leaves box stacks exactly where they were.
-
-    Rigid hydroelastic for welded bodies was tried first: thin compliant pieces (a plate's
-    5 mm base) resting on a rigid table top never came to rest and walked off (8 cm, 0.8 rad
-    in 1 s); compliant-on-compliant rests them exactly, and stacks of boxes rest either way.
-    """
-    inspector = scene_graph.model_inspector()
-    source = plant.get_source_id()
-    for gid in inspector.GetAllGeometryIds(Role.kProximity):
-        props = ProximityProperties(inspector.GetProximityProperties(gid))
-        AddCompliantHydroelasticProperties(0.01, float(cfg["hydroelastic_modulus"]), props)
-        d = props.GetPropertyOrDefault("material", "hunt_crossley_dissipation", 0.0)
-        if d < cfg["min_dissipation"]:
-            props.UpdateProperty("material", "hunt_crossley_dissipation",
-                                 float(cfg["min_dissipation"]))
-        scene_graph.AssignRole(source, gid, props, RoleAssign.kReplace)
-
-
 def build_sim_scene(directives_path, package_xml, cfg, time_step):
     builder = DiagramBuilder()
-    model = "hydroelastic_with_fallback" if cfg["model"] == "hydroelastic" else "point"
-    config = MultibodyPlantConfig(time_step=time_step, contact_model=model,
-                                  discrete_contact_approximation=cfg["approximation"])
+    config = MultibodyPlantConfig(time_step=time_step)
+    if cfg["model"] == "point":
+        config.contact_model = "point"
+    if cfg["approximation"] is not None:
+        config.discrete_contact_approximation = cfg["approximation"]
     plant, scene_graph = AddMultibodyPlant(config, builder)
     parser = Parser(plant)
     if parser.package_map().Contains("drake_models"):
@@ -120,11 +87,6 @@ def build_sim_scene(directives_path, package_xml, cfg, time_step):
         plant.Finalize()
     except RuntimeError as e:
         raise ModelError(f"Drake could not load {directives_path}: {e}") from e
-    if cfg["model"] == "hydroelastic":
-        try:
-            _assign_contact(plant, scene_graph, cfg)
-        except RuntimeError as e:
-            raise ModelError(f"hydroelastic properties rejected for {directives_path}: {e}") from e
     diagram = builder.Build()
     return LoadedScene(diagram, plant, scene_graph, directives_path, time_step)
 

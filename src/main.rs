@@ -162,8 +162,9 @@ enum Command {
         /// Skip the 5 s stability simulation (then no Drake is needed).
         #[arg(long)]
         no_stb: bool,
-        /// Contact model of the stability simulation.
-        #[arg(long, default_value = "hydroelastic", value_parser = ["hydroelastic", "point"])]
+        /// Contact model(s) of the stability simulation: Drake's default plant on the files as
+        /// written (metrics `stb`), point contact as in SceneEval (`stb_point`), or both.
+        #[arg(long, default_value = "both", value_parser = ["both", "as-written", "point"])]
         contact: String,
         /// Simulate the whole 5 s even when everything is at rest earlier.
         #[arg(long)]
@@ -429,22 +430,19 @@ fn run_eval(
     full_stb: bool,
 ) -> anyhow::Result<ExitCode> {
     use scenesmith::eval::{self, EvalOptions, StabilityOptions};
-    use scenesmith::physics::settle::{ContactModel, ContactOptions};
-    let model = if contact == "point" {
-        ContactModel::Point
-    } else {
-        ContactModel::Hydroelastic
+    use scenesmith::physics::settle::ContactModel;
+    let stb_contacts = match contact {
+        "as-written" => vec![ContactModel::AsWritten],
+        "point" => vec![ContactModel::Point],
+        _ => vec![ContactModel::AsWritten, ContactModel::Point],
     };
     let opts = EvalOptions {
         robot_radius_m: robot_radius,
         stability: (!no_stb).then(|| StabilityOptions {
-            contact: ContactOptions {
-                model,
-                ..ContactOptions::default()
-            },
             stop_at_rest: !full_stb,
             ..StabilityOptions::default()
         }),
+        stb_contacts,
         ..EvalOptions::default()
     };
     let pool = (!no_stb).then(scenesmith::physics::BridgePool::from_env);

@@ -19,7 +19,7 @@ BOX_SDF = """<?xml version="1.0"?>
       </inertial>
       <collision name="c">
         <geometry><box><size>{sx} {sy} {sz}</size></box></geometry>
-        <drake:proximity_properties>
+        <drake:proximity_properties>{contact}
           <drake:mu_dynamic>0.5</drake:mu_dynamic><drake:mu_static>0.6</drake:mu_static>
         </drake:proximity_properties>
       </collision>
@@ -28,21 +28,28 @@ BOX_SDF = """<?xml version="1.0"?>
 </sdf>
 """
 
+#: The contact model the project's SDFormat writer declares on every collision geometry.
+COMPLIANT = """
+          <drake:compliant_hydroelastic/>
+          <drake:hydroelastic_modulus>1e8</drake:hydroelastic_modulus>
+          <drake:hunt_crossley_dissipation>10</drake:hunt_crossley_dissipation>"""
+
 PACKAGE_XML = """<?xml version="1.0"?>
 <package format="2"><name>{name}</name><version>0.0.0</version>
 <description>test</description><maintainer email="t@t">t</maintainer><license>CC0</license></package>
 """
 
 
-def write_scene(tmp_path, boxes, package="bridge_test"):
-    """boxes: list of (instance name, (x, y, z), size (sx, sy, sz), welded)."""
+def write_scene(tmp_path, boxes, package="bridge_test", contact=COMPLIANT):
+    """boxes: list of (instance name, (x, y, z), size (sx, sy, sz), welded); every box declares
+    `contact` in its proximity properties (the project's compliant model unless given)."""
     (tmp_path / "package.xml").write_text(PACKAGE_XML.format(name=package))
     lines = ["directives:"]
     for name, xyz, size, welded in boxes:
         model_dir = tmp_path / "assets" / name
         model_dir.mkdir(parents=True, exist_ok=True)
         (model_dir / "model.sdf").write_text(
-            BOX_SDF.format(name=name, sx=size[0], sy=size[1], sz=size[2]))
+            BOX_SDF.format(name=name, sx=size[0], sy=size[1], sz=size[2], contact=contact))
         lines.append(f"- add_model:\n    name: {name}\n"
                      f"    file: package://{package}/assets/{name}/model.sdf")
         pose = (f"translation: [{xyz[0]}, {xyz[1]}, {xyz[2]}]\n"

@@ -4,6 +4,7 @@ import pytest
 
 from drake_bridge import ops
 from drake_bridge.errors import BadRequest, FileMissing, ModelError
+from drake_bridge.tests.conftest import write_scene
 
 
 def test_load_reports_instances_free_bodies_and_poses(overlapping_scene):
@@ -40,6 +41,23 @@ def test_collision_report_counts_objects_not_architecture(overlapping_scene):
     assert report["penetrating_objects"] == ["box_a", "box_b"]
     assert report["col_percent"] == pytest.approx(200.0 / 3.0)
     assert report["max_depth_m"] == pytest.approx(0.004, abs=1e-6)
+
+
+def test_collision_report_never_counts_the_static_floor(tmp_path):
+    # Pairs name their instances in sorted order, so the floor ("m_floor") is "b" of one pair
+    # and "a" of the other: a set difference that binds to one side only shows.
+    scene = write_scene(tmp_path, [
+        ("box_low", (0.0, 0.0, 0.097), (0.2, 0.2, 0.2), False),
+        ("m_floor", (0.0, 0.0, -0.05), (4.0, 4.0, 0.1), True),
+        ("sunk_box", (1.0, 0.0, 0.095), (0.2, 0.2, 0.2), False),
+    ])
+    report = ops.op_collision_report(dict(scene, static_instances=["m_floor"]))
+    assert sorted((p["a"], p["b"]) for p in report["pairs"]) == [
+        ("box_low", "m_floor"), ("m_floor", "sunk_box")]
+    assert report["objects"] == 2
+    assert report["penetrating_objects"] == ["box_low", "sunk_box"]
+    assert report["col_percent"] == pytest.approx(100.0)
+    assert report["max_depth_m"] == pytest.approx(0.005, abs=1e-6)
 
 
 def test_pose_override_resolves_the_overlap(overlapping_scene):

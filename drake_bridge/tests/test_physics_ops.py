@@ -60,6 +60,37 @@ def test_simulate_runs_the_whole_duration_and_point_contact_is_selectable(tmp_pa
         ops.OPS["simulate"](dict(scene, contact={"stiffness": 1}))
 
 
+def _hydroelastic_geometries(scene_args, model):
+    from drake_bridge.sim_plant import build_sim_scene, contact_config
+    from pydrake.geometry import Role
+    cfg = contact_config({"contact": {"model": model}})
+    loaded = build_sim_scene(scene_args["directives"], scene_args["package_xml"], cfg, 1e-3)
+    inspector = loaded.scene_graph.model_inspector()
+    ids = inspector.GetAllGeometryIds(Role.kProximity)
+    return sum(1 for g in ids
+               if inspector.GetProximityProperties(g).HasGroup("hydroelastic")), len(ids)
+
+
+def test_the_bridge_simulates_the_files_as_written(tmp_path):
+    # Files that declare no hydroelastic properties stay without them: nothing is injected.
+    (tmp_path / "bare").mkdir()
+    (tmp_path / "compliant").mkdir()
+    bare = write_scene(tmp_path / "bare", [FLOOR, ("box", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False)],
+                       contact="")
+    assert _hydroelastic_geometries(bare, "as_written") == (0, 2)
+    compliant = write_scene(tmp_path / "compliant",
+                            [FLOOR, ("box", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False)])
+    assert _hydroelastic_geometries(compliant, "as_written") == (2, 2)
+    # The plant is Drake's default one: hydroelastic with point fallback, 1 ms.
+    from drake_bridge.sim_plant import build_sim_scene, contact_config
+    loaded = build_sim_scene(compliant["directives"], compliant["package_xml"],
+                             contact_config({}), 1e-3)
+    assert str(loaded.plant.get_contact_model()).endswith("kHydroelasticWithFallback")
+    point = build_sim_scene(compliant["directives"], compliant["package_xml"],
+                            contact_config({"contact": {"model": "point"}}), 1e-3)
+    assert str(point.plant.get_contact_model()).endswith("kPoint")
+
+
 def test_settle_takes_initial_poses(tmp_path):
     scene = write_scene(tmp_path, [FLOOR, ("box", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False)])
     r = ops.OPS["settle"](dict(scene, poses={"box": {"body": {"xyz": [1.0, 0.5, 0.3],

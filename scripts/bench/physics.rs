@@ -254,33 +254,8 @@ fn contact_part(pool: &BridgePool) {
     }
     let dir = tempfile::tempdir().expect("temp dir");
     write_scene_dir(dir.path(), &state).expect("scene written");
-    for (name, contact) in [
-        (
-            "point (Drake default)",
-            ContactOptions {
-                model: ContactModel::Point,
-                ..ContactOptions::default()
-            },
-        ),
-        (
-            "hydroelastic 1e7 Pa, d >= 10 s/m",
-            ContactOptions {
-                hydroelastic_modulus: 1e7,
-                ..ContactOptions::default()
-            },
-        ),
-        (
-            "hydroelastic 1e8 Pa, file dissipation",
-            ContactOptions {
-                min_dissipation: 0.0,
-                ..ContactOptions::default()
-            },
-        ),
-        (
-            "hydroelastic 1e8 Pa, d >= 10 s/m (chosen)",
-            ContactOptions::default(),
-        ),
-    ] {
+    for model in [ContactModel::Point, ContactModel::AsWritten] {
+        let (name, contact) = (model.label(), ContactOptions { model });
         let opts = SettleOptions {
             max_time: 5.0,
             stop_at_rest: false,

@@ -79,7 +79,8 @@ pub struct VisualPart {
     pub texture: Option<Texture>,
 }
 
-/// Contact parameters of a link's colliders.
+/// Contact parameters of a link's colliders (the SDFormat writer declares every collider
+/// compliant hydroelastic at [`material::HYDROELASTIC_MODULUS_PA`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Contact {
     /// Dynamic friction coefficient.
@@ -90,13 +91,22 @@ pub struct Contact {
     pub hunt_crossley_dissipation: f64,
 }
 
+impl Contact {
+    /// Friction as given; the dissipation raised to the project's contact model's minimum
+    /// ([`material::MIN_HUNT_CROSSLEY_DISSIPATION`]), so what is written is what is held.
+    pub fn new(mu_dynamic: f64, mu_static: f64, hunt_crossley_dissipation: f64) -> Contact {
+        Contact {
+            mu_dynamic,
+            mu_static,
+            hunt_crossley_dissipation: hunt_crossley_dissipation
+                .max(material::MIN_HUNT_CROSSLEY_DISSIPATION),
+        }
+    }
+}
+
 impl From<&Material> for Contact {
     fn from(m: &Material) -> Self {
-        Contact {
-            mu_dynamic: m.mu_dynamic,
-            mu_static: m.mu_static,
-            hunt_crossley_dissipation: m.hunt_crossley_dissipation,
-        }
+        Contact::new(m.mu_dynamic, m.mu_static, m.hunt_crossley_dissipation)
     }
 }
 

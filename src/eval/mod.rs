@@ -29,7 +29,7 @@ use crate::formats::FormatError;
 use crate::formats::scene_dir;
 use crate::physics::as_written::posed_objects;
 use crate::physics::collision::penetrating_pairs;
-use crate::physics::settle::ContactOptions;
+use crate::physics::settle::{ContactModel, ContactOptions};
 use crate::physics::{BridgePool, PhysicsError};
 use crate::prompt;
 use crate::scene::ObjectKind;
@@ -114,8 +114,11 @@ pub struct EvalOptions {
     pub robot_height_m: f64,
     /// OOB tolerance, metres.
     pub oob_tolerance_m: f64,
-    /// Stability simulation (`None`: skipped).
+    /// Stability simulation (`None`: skipped); its `contact` is set per protocol.
     pub stability: Option<StabilityOptions>,
+    /// The contact models STB is simulated with: Drake's defaults on the files as written
+    /// (`Metrics::stb`) and point contact (`Metrics::stb_point`, SceneEval's protocol).
+    pub stb_contacts: Vec<ContactModel>,
 }
 
 impl Default for EvalOptions {
@@ -126,6 +129,7 @@ impl Default for EvalOptions {
             robot_height_m: 1.5,
             oob_tolerance_m: 0.01,
             stability: Some(StabilityOptions::default()),
+            stb_contacts: vec![ContactModel::AsWritten, ContactModel::Point],
         }
     }
 }
@@ -141,6 +145,23 @@ pub struct Counts {
     pub per_room: BTreeMap<String, usize>,
     /// Per category.
     pub per_category: BTreeMap<String, usize>,
+}
+
+/// What post-processing removed (projection that could not separate an object, a fall while
+/// settling), so that COL and STB are read next to what they no longer count.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Removed {
+    /// Objects the stages placed: those in the scene plus those removed.
+    pub placed: usize,
+    /// Objects removed.
+    pub removed: usize,
+    /// `removed` as a percent of `placed`.
+    pub percent: f64,
+    /// Each removal with its stage and reason (from `scene.json`).
+    pub removals: Vec<crate::scene::Removal>,
+    /// Categories the prompt asked for whose count the removals left short, with how many
+    /// of each were removed ("mug": 1).
+    pub lost: BTreeMap<String, usize>,
 }
 
 /// COL.
@@ -199,6 +220,10 @@ pub struct Stability {
     /// Islands simulated separately (free objects that touch or rest on each other).
     #[serde(default)]
     pub islands: usize,
+    /// Islands the wall-clock cap stopped before the duration; their objects count as
+    /// unstable.
+    #[serde(default)]
+    pub timed_out_islands: usize,
     /// The objects that failed.
     pub unstable: Vec<Unstable>,
 }
@@ -212,8 +237,13 @@ pub struct Metrics {
     pub counts: Counts,
     /// Collisions.
     pub col: Col,
-    /// Stability (`null` when not simulated).
+    /// Stability under Drake's default plant on the files as written (`null` when not
+    /// simulated).
     pub stb: Option<Stability>,
+    /// Stability under point contact, SceneEval's protocol, for comparison with published
+    /// figures (`null` when not simulated).
+    #[serde(default)]
+    pub stb_point: Option<Stability>,
     /// Navigability.
     pub nav: Nav,
     /// Out of bounds.
@@ -222,6 +252,44 @@ pub struct Metrics {
     /// older files under its former name `prompt`).
     #[serde(alias = "prompt")]
     pub plan_coverage: PlanCoverage,
+    /// Objects removed by post-processing, and asked-for objects lost that way.
+    #[serde(default)]
+    pub removed: Removed,
+}
+
+/// The removals recorded in the scene, and which of them the prompt asked for: a removed
+/// object whose category names a planned requirement that the scene no longer meets.
+fn removed(state: &SceneState, coverage: &PlanCoverage) -> Removed {
+    let removals = state.scene.removed.clone();
+    let present = state
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.kind != ObjectKind::Architecture)
+        .count();
+    let placed = present + removals.len();
+    let mut lost: BTreeMap<String, usize> = BTreeMap::new();
+    for r in &removals {
+        let short = coverage.requirements.iter().find(|q| {
+            q.kind != "none"
+                && q.present < q.required
+                && crate::stages::StageState::names(&q.category, &r.category)
+        });
+        if let Some(q) = short {
+            *lost.entry(q.category.clone()).or_default() += 1;
+        }
+    }
+    Removed {
+        placed,
+        removed: removals.len(),
+        percent: if placed == 0 {
+            0.0
+        } else {
+            100.0 * removals.len() as f64 / placed as f64
+        },
+        removals,
+        lost,
+    }
 }
 
 fn counts(state: &SceneState) -> Counts {
@@ -297,15 +365,27 @@ pub fn evaluate(
 ) -> Result<Metrics, EvalError> {
     let posed = posed_objects(&state.scene, &state.assets);
     let reading = prompt::read(&state.scene.provenance.prompt);
-    let stb = match (pool, &opts.stability) {
-        (Some(pool), Some(s)) => Some(stability(state, pool, s)?),
-        _ => None,
+    let stb_with = |model: ContactModel| -> Result<Option<Stability>, EvalError> {
+        match (pool, &opts.stability) {
+            (Some(pool), Some(s)) if opts.stb_contacts.contains(&model) => {
+                let s = StabilityOptions {
+                    contact: ContactOptions { model },
+                    ..*s
+                };
+                Ok(Some(stability(state, pool, &s)?))
+            }
+            _ => Ok(None),
+        }
     };
+    let plan_coverage = coverage::plan_coverage(&reading, &state.scene);
+    let stb = stb_with(ContactModel::AsWritten)?;
+    let stb_point = stb_with(ContactModel::Point)?;
     Ok(Metrics {
         version: METRICS_VERSION,
         counts: counts(state),
         col: col(state, &posed, opts.col_threshold_m),
         stb,
+        stb_point,
         nav: floor::nav(
             &state.scene,
             &posed,
@@ -313,7 +393,8 @@ pub fn evaluate(
             opts.robot_height_m,
         ),
         oob: floor::oob(&state.scene, &posed, opts.oob_tolerance_m),
-        plan_coverage: coverage::plan_coverage(&reading, &state.scene),
+        removed: removed(state, &plan_coverage),
+        plan_coverage,
     })
 }
 
@@ -345,6 +426,33 @@ fn join_counts(m: &BTreeMap<String, usize>) -> String {
         .join(", ")
 }
 
+/// The STB row of the table: percent, protocol, thresholds, islands and how they ended.
+fn stb_row(s: &Stability) -> String {
+    let ending = if s.timed_out_islands > 0 {
+        format!(
+            "; {} islands stopped by the wall-clock cap, their objects counted unstable",
+            s.timed_out_islands
+        )
+    } else if s.simulated_s + 1e-9 < s.options.duration_s {
+        format!(
+            "; every island at rest by {:.2} s, remaining motion bounded",
+            s.simulated_s
+        )
+    } else {
+        String::new()
+    };
+    format!(
+        "{:.1} % of {} free objects stable over {:.1} s, {} (< {:.0} mm, < {:.2} rad; {} islands){ending}",
+        s.percent,
+        s.free_objects,
+        s.options.duration_s,
+        s.options.contact.model.label(),
+        s.options.max_displacement_m * 1e3,
+        s.options.max_rotation_rad,
+        s.islands,
+    )
+}
+
 /// The metrics as a two-column text table.
 pub fn table(m: &Metrics) -> String {
     let mut rows: Vec<(String, String)> = vec![
@@ -366,34 +474,38 @@ pub fn table(m: &Metrics) -> String {
             ),
         ),
     ];
-    match &m.stb {
-        Some(s) => {
-            rows.push((
-                "STB".into(),
-                format!(
-                    "{:.1} % of {} free objects stable over {:.1} s (< {:.0} mm, < {:.2} rad; {} islands){}",
-                    s.percent,
-                    s.free_objects,
-                    s.options.duration_s,
-                    s.options.max_displacement_m * 1e3,
-                    s.options.max_rotation_rad,
-                    s.islands,
-                    if s.simulated_s + 1e-9 < s.options.duration_s {
-                        format!(
-                            "; every island at rest by {:.2} s, remaining motion bounded",
-                            s.simulated_s
-                        )
-                    } else {
-                        String::new()
-                    }
-                ),
-            ));
-            rows.push(("MD".into(), format!("{:.2} mm", s.md_mm)));
-            rows.push(("XD".into(), format!("{:.4} m", s.xd_m)));
-            rows.push(("MR".into(), format!("{:.4} rad", s.mr_rad)));
-        }
-        None => rows.push(("STB".into(), "not simulated (no Drake bridge)".into())),
+    let simulated = [("STB", &m.stb), ("STB point", &m.stb_point)];
+    for (name, stb) in simulated.iter().filter(|(_, s)| s.is_some()) {
+        let Some(s) = stb else { continue };
+        let suffix = if *name == "STB" { "" } else { " point" };
+        rows.push((name.to_string(), stb_row(s)));
+        rows.push((format!("MD{suffix}"), format!("{:.2} mm", s.md_mm)));
+        rows.push((format!("XD{suffix}"), format!("{:.4} m", s.xd_m)));
+        rows.push((format!("MR{suffix}"), format!("{:.4} rad", s.mr_rad)));
     }
+    if simulated.iter().all(|(_, s)| s.is_none()) {
+        rows.push(("STB".into(), "not simulated (no Drake bridge)".into()));
+    }
+    rows.push((
+        "removed".into(),
+        format!(
+            "{} of {} placed objects ({:.1} %) removed by post-processing{}",
+            m.removed.removed,
+            m.removed.placed,
+            m.removed.percent,
+            if m.removed.lost.is_empty() {
+                String::new()
+            } else {
+                let lost: Vec<String> = m
+                    .removed
+                    .lost
+                    .iter()
+                    .map(|(c, n)| format!("{c} {n}"))
+                    .collect();
+                format!("; asked for and lost: {}", lost.join(", "))
+            }
+        ),
+    ));
     rows.push((
         "NAV".into(),
         format!(
@@ -454,5 +566,33 @@ mod tests {
         let old: Metrics = serde_json::from_value(v).expect("the old name loads");
         assert_eq!(old, m);
         assert!(table(&m).contains("of the reader's"), "{}", table(&m));
+    }
+
+    #[test]
+    fn removals_are_counted_and_asked_for_ones_named_lost() {
+        let mut scene = crate::scene::Scene::new("A room with a table and two mugs.", 0, "t");
+        for (object, category) in [("mug_0", "mug"), ("book_0", "book")] {
+            scene.removed.push(crate::scene::Removal {
+                object: object.into(),
+                category: category.into(),
+                stage: "manipuland".into(),
+                reason: "fell 0.5 m while settling".into(),
+            });
+        }
+        let state = SceneState::new(scene);
+        let opts = EvalOptions {
+            stability: None,
+            ..EvalOptions::default()
+        };
+        let m = evaluate(&state, None, &opts).expect("evaluates");
+        assert_eq!((m.removed.placed, m.removed.removed), (2, 2));
+        assert_eq!(m.removed.percent, 100.0);
+        // Two mugs were asked for and none is left; nobody asked for the book.
+        assert_eq!(m.removed.lost, BTreeMap::from([("mug".to_string(), 1)]));
+        assert!(
+            table(&m).contains("asked for and lost: mug 1"),
+            "{}",
+            table(&m)
+        );
     }
 }

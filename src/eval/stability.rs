@@ -176,7 +176,12 @@ pub fn stability(
 fn verdicts(opts: &StabilityOptions, islands: usize, results: &[SettleResult]) -> Stability {
     let mut unstable = Vec::new();
     let (mut n, mut sum_d, mut sum_r, mut max_d) = (0usize, 0.0, 0.0, 0.0f64);
+    let mut timed_out = 0;
     for result in results {
+        // An island the wall-clock cap stopped before the duration was not shown stable:
+        // every object in it counts as unstable, whatever it did in the time simulated.
+        let cut_short = result.timed_out && !result.at_rest;
+        timed_out += usize::from(cut_short);
         // After an island stopped early at rest, the most the remaining time could add.
         let left = (opts.duration_s - result.sim_time).max(0.0);
         let (extra_d, extra_r) = if result.at_rest {
@@ -190,7 +195,7 @@ fn verdicts(opts: &StabilityOptions, islands: usize, results: &[SettleResult]) -
             sum_r += m.rotation_rad;
             max_d = max_d.max(m.displacement_m);
             let (d, r) = (m.displacement_m + extra_d, m.rotation_rad + extra_r);
-            if !(d < opts.max_displacement_m && r < opts.max_rotation_rad) {
+            if cut_short || !(d < opts.max_displacement_m && r < opts.max_rotation_rad) {
                 unstable.push(Unstable {
                     id: id.clone(),
                     displacement_m: d,
@@ -216,6 +221,70 @@ fn verdicts(opts: &StabilityOptions, islands: usize, results: &[SettleResult]) -
         at_rest_at_end: results.iter().all(|r| r.at_rest),
         simulated_s: results.iter().map(|r| r.sim_time).fold(0.0, f64::max),
         islands,
+        timed_out_islands: timed_out,
         unstable,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::settle::Motion;
+
+    fn island(
+        motion: &[(&str, f64)],
+        sim_time: f64,
+        at_rest: bool,
+        timed_out: bool,
+    ) -> SettleResult {
+        SettleResult {
+            poses: BTreeMap::new(),
+            motion: motion
+                .iter()
+                .map(|(id, d)| {
+                    let m = Motion {
+                        displacement_m: *d,
+                        rotation_rad: 0.0,
+                        start_z: 0.0,
+                        end_z: 0.0,
+                    };
+                    (id.to_string(), m)
+                })
+                .collect(),
+            sim_time,
+            steps: (sim_time * 1000.0) as u64,
+            at_rest,
+            timed_out,
+            max_penetration_m: 0.0,
+            free_bodies: motion.len(),
+            wall_s: 1.0,
+            build_s: 0.0,
+            ms_per_step: 1.0,
+        }
+    }
+
+    #[test]
+    fn an_island_stopped_by_the_wall_clock_is_unstable() {
+        let opts = StabilityOptions::default();
+        let results = [
+            island(&[("mug", 0.001), ("plate", 0.0)], 1.2, false, true),
+            island(&[("book", 0.002)], 5.0, false, false),
+            island(&[("lamp", 0.0)], 0.8, true, false),
+        ];
+        let s = verdicts(&opts, 3, &results);
+        assert_eq!(s.timed_out_islands, 1);
+        let ids: Vec<&str> = s.unstable.iter().map(|u| u.id.as_str()).collect();
+        assert_eq!(ids, ["mug", "plate"]);
+        assert_eq!((s.free_objects, s.stable), (4, 2));
+    }
+
+    #[test]
+    fn early_stop_at_rest_adds_what_the_rest_of_the_time_could_move() {
+        let opts = StabilityOptions::default();
+        // 4.5 s left at 0.5 mm/s could add 2.25 mm: 8 mm becomes more than 1 cm.
+        let s = verdicts(&opts, 1, &[island(&[("cup", 0.008)], 0.5, true, false)]);
+        assert_eq!(s.stable, 0);
+        let s = verdicts(&opts, 1, &[island(&[("cup", 0.007)], 0.5, true, false)]);
+        assert_eq!(s.stable, 1);
     }
 }

@@ -5,6 +5,7 @@
 //! with limits and damping, and a collision filter group that turns off self-collision inside
 //! articulated models. URIs are relative to the SDF file, so an asset directory can move.
 
+use crate::assets::material::HYDROELASTIC_MODULUS_PA;
 use crate::assets::{Asset, Link};
 use crate::formats::gltf::link_visual_gltf;
 use crate::formats::obj::convex_to_obj;
@@ -106,6 +107,11 @@ pub fn asset_files(asset: &Asset) -> Vec<AssetFile> {
                     )
                     .child(
                         El::new("drake:proximity_properties")
+                            .child(El::new("drake:compliant_hydroelastic"))
+                            .child(El::leaf(
+                                "drake:hydroelastic_modulus",
+                                fmt_num(HYDROELASTIC_MODULUS_PA),
+                            ))
                             .child(El::leaf(
                                 "drake:mu_dynamic",
                                 fmt_num(link.contact.mu_dynamic),
@@ -199,6 +205,30 @@ mod tests {
         );
         assert_eq!(sdf.matches("<inertial>").count(), 2);
         assert!(sdf.contains("<drake:mu_dynamic>0.4</drake:mu_dynamic>"));
+    }
+
+    #[test]
+    fn every_collider_declares_the_compliant_contact_model() {
+        let asset = build(&AssetRequest::new("mug", 1)).unwrap();
+        let sdf = text_of(&asset_files(&asset), "model.sdf");
+        let pieces = asset.collision_pieces();
+        assert_eq!(
+            sdf.matches("<drake:compliant_hydroelastic/>").count(),
+            pieces
+        );
+        assert_eq!(
+            sdf.matches("<drake:hydroelastic_modulus>100000000</drake:hydroelastic_modulus>")
+                .count(),
+            pieces
+        );
+        // The material table's 0.5 to 3 s/m is raised to the minimum that rests.
+        let table = crate::assets::material::material(&asset.material).unwrap();
+        assert!(table.hunt_crossley_dissipation < 10.0);
+        assert_eq!(
+            sdf.matches("<drake:hunt_crossley_dissipation>10</drake:hunt_crossley_dissipation>")
+                .count(),
+            pieces
+        );
     }
 
     #[test]

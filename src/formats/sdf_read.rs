@@ -75,11 +75,11 @@ fn contact(collision: &El) -> Contact {
             .and_then(|t| t.parse::<f64>().ok())
             .unwrap_or(d)
     };
-    Contact {
-        mu_dynamic: get("drake:mu_dynamic", 0.5),
-        mu_static: get("drake:mu_static", 0.6),
-        hunt_crossley_dissipation: get("drake:hunt_crossley_dissipation", 1.0),
-    }
+    Contact::new(
+        get("drake:mu_dynamic", 0.5),
+        get("drake:mu_static", 0.6),
+        get("drake:hunt_crossley_dissipation", 1.0),
+    )
 }
 
 /// Reads `model.sdf` in `dir` (plus its meshes) into an asset; `record` supplies what SDFormat
@@ -121,11 +121,7 @@ pub fn read_asset(dir: &Path, record: &AssetRecord) -> Result<Asset, String> {
             visuals,
             collisions,
             mass: inertial(l)?,
-            contact: link_contact.unwrap_or(Contact {
-                mu_dynamic: 0.5,
-                mu_static: 0.6,
-                hunt_crossley_dissipation: 1.0,
-            }),
+            contact: link_contact.unwrap_or(Contact::new(0.5, 0.6, 1.0)),
         });
     }
     let mut joints = Vec::new();

@@ -1,7 +1,7 @@
 //! Gravity settling through the bridge: the request (`settle` / `simulate` ops, see
 //! `drake_bridge/settle.py`) and its typed reply.
 //!
-//! The bridge simulates a directives file (1 ms discrete steps, SAP-family "lagged" contact)
+//! The bridge simulates a directives file as written (Drake's default plant at 1 ms steps)
 //! until every free body has been slower than the rest thresholds for `rest_time`, or the time
 //! cap. Which objects are free and which welded is decided by whoever wrote the directives
 //! (see [`super::workspace`] and [`super::postprocess`]).
@@ -16,32 +16,42 @@ use super::PhysicsError;
 use crate::scene::Pose;
 
 /// Contact model of a simulation.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ContactModel {
-    /// Compliant hydroelastic on every geometry (rests exactly; default).
-    Hydroelastic,
-    /// Drake's point contact (what the scene files give under Drake's default plant).
+    /// Drake's default plant (`MultibodyPlantConfig()`: hydroelastic with point fallback) on
+    /// the files as written, which declare every collider compliant hydroelastic
+    /// ([`crate::assets::material::HYDROELASTIC_MODULUS_PA`]): what a user who loads
+    /// `scene.dmd.yaml` the README's way gets. The default.
+    #[serde(alias = "hydroelastic")]
+    AsWritten,
+    /// Point contact on the same files: SceneEval's protocol, for comparison with published
+    /// figures.
     Point,
 }
 
-/// Contact configuration sent with each simulation request.
+impl ContactModel {
+    /// How reports name it.
+    pub fn label(self) -> &'static str {
+        match self {
+            ContactModel::AsWritten => "Drake defaults, files as written",
+            ContactModel::Point => "point contact (SceneEval)",
+        }
+    }
+}
+
+/// Contact configuration sent with each simulation request. The bridge injects no contact
+/// properties: the files carry them.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ContactOptions {
     /// Contact model.
     pub model: ContactModel,
-    /// Hydroelastic modulus of every geometry, Pa.
-    pub hydroelastic_modulus: f64,
-    /// Hunt-Crossley dissipation is raised to at least this, s/m (hydroelastic only).
-    pub min_dissipation: f64,
 }
 
 impl Default for ContactOptions {
     fn default() -> Self {
         ContactOptions {
-            model: ContactModel::Hydroelastic,
-            hydroelastic_modulus: 1e8,
-            min_dissipation: 10.0,
+            model: ContactModel::AsWritten,
         }
     }
 }
@@ -150,11 +160,7 @@ pub fn request_args(
         "rest_time": opts.rest_time,
         "stop_at_rest": opts.stop_at_rest,
         "wall_limit": opts.wall_limit,
-        "contact": {
-            "model": opts.contact.model,
-            "hydroelastic_modulus": opts.contact.hydroelastic_modulus,
-            "min_dissipation": opts.contact.min_dissipation,
-        },
+        "contact": { "model": opts.contact.model },
         "floor_z": opts.floor_z,
     });
     args[duration_key] = json!(opts.max_time);

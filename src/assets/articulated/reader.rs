@@ -469,11 +469,11 @@ pub(super) fn read_sdf(root: &El, model_dir: &Path, lib_dir: &Path) -> Result<Ra
                         .and_then(|t| t.parse::<f64>().ok())
                         .unwrap_or(d)
                 };
-                Contact {
-                    mu_dynamic: g("drake:mu_dynamic", 0.5),
-                    mu_static: g("drake:mu_static", 0.6),
-                    hunt_crossley_dissipation: g("drake:hunt_crossley_dissipation", 1.0),
-                }
+                Contact::new(
+                    g("drake:mu_dynamic", 0.5),
+                    g("drake:mu_static", 0.6),
+                    g("drake:hunt_crossley_dissipation", 1.0),
+                )
             });
         links.push(RawLink {
             name,
@@ -651,11 +651,7 @@ impl RawModel {
                 visuals,
                 collisions: l.collisions,
                 mass,
-                contact: l.contact.unwrap_or(Contact {
-                    mu_dynamic: 0.5,
-                    mu_static: 0.6,
-                    hunt_crossley_dissipation: 1.0,
-                }),
+                contact: l.contact.unwrap_or(Contact::new(0.5, 0.6, 1.0)),
             });
         }
         let joints = self
