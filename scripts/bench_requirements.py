@@ -69,15 +69,22 @@ def tally(summary, key):
     return t.get("met", 0), t.get("total", 0)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+def bench_args(doc, extra=lambda ap: None):
+    """The arguments the scene benchmarks share (prompts, --out, --bin, --ids), plus `extra`'s;
+    returns them with the set of wanted ids, after creating --out."""
+    ap = argparse.ArgumentParser(description=doc.split("\n\n")[0])
     ap.add_argument("prompts")
     ap.add_argument("--out", required=True)
     ap.add_argument("--bin", default=os.path.join(ROOT, "target", "release", "scenesmith"))
     ap.add_argument("--ids", default="")
+    extra(ap)
     args = ap.parse_args()
-    want = {i for i in args.ids.split(",") if i}
     os.makedirs(args.out, exist_ok=True)
+    return args, {i for i in args.ids.split(",") if i}
+
+
+def main():
+    args, want = bench_args(__doc__)
     rows = []
     totals = {"objects": [0, 0], "absent": [0, 0], "rooms": [0, 0], "refused": [0, 0]}
     with open(args.prompts) as f:

@@ -14,13 +14,12 @@ three or more rooms, the sparsest room, and pooled COL / STB / removed.
         [--bin target/release/scenesmith] [--ids a,b] [--limit N]
 """
 
-import argparse
 import json
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_requirements import ROOT, generate  # noqa: E402 - the sibling script's runner
+from bench_requirements import bench_args, generate  # noqa: E402 - the sibling script's runner
 
 
 def pct(a, b):
@@ -57,15 +56,8 @@ def row_of(entry_id, metrics, secs):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("prompts")
-    ap.add_argument("--out", required=True)
-    ap.add_argument("--bin", default=os.path.join(ROOT, "target", "release", "scenesmith"))
-    ap.add_argument("--ids", default="")
-    ap.add_argument("--limit", type=int, default=0)
-    args = ap.parse_args()
-    want = {i for i in args.ids.split(",") if i}
-    os.makedirs(args.out, exist_ok=True)
+    args, want = bench_args(
+        __doc__, lambda ap: ap.add_argument("--limit", type=int, default=0))
     with open(args.prompts) as f:
         entries = [json.loads(line) for line in f if line.strip()]
     entries = [e for e in entries if e.get("kind") != "refuse" and (not want or e["id"] in want)]

@@ -1007,17 +1007,18 @@ fn open_head(
     } else {
         None
     };
+    let dropped = |reason: String| Open::Dropped {
+        next: k,
+        report: NounReport {
+            noun: written.clone(),
+            lemma: ground::noun_lemma(&name.join(" ")),
+            status: NounStatus::Dropped,
+            family: None,
+            reason: Some(reason),
+        },
+    };
     if let Some(reason) = bare_reason {
-        return Open::Dropped {
-            next: k,
-            report: NounReport {
-                noun: written,
-                lemma: ground::noun_lemma(&name.join(" ")),
-                status: NounStatus::Dropped,
-                family: None,
-                reason: Some(reason.to_string()),
-            },
-        };
+        return dropped(reason.to_string());
     }
     match ground_words(lex, name, strong) {
         Ok(head) => {
@@ -1034,16 +1035,7 @@ fn open_head(
                 next: k,
             }
         }
-        Err(reason) => Open::Dropped {
-            next: k,
-            report: NounReport {
-                noun: written,
-                lemma: ground::noun_lemma(&name.join(" ")),
-                status: NounStatus::Dropped,
-                family: None,
-                reason: Some(reason),
-            },
-        },
+        Err(reason) => dropped(reason),
     }
 }
 

@@ -264,14 +264,16 @@ fn run_one(
     Ok(outcome.state.scene)
 }
 
-/// Splits the room's small objects over the supporting entities present: per entity a plan
-/// holding only that entity's share.
-fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String, RoomPlan)> {
-    let furniture: Vec<(String, String)> = scene
+/// The room's furniture whose asset has a support surface.
+fn surface_furniture<'a>(
+    scene: &'a SceneState,
+    room: &'a str,
+) -> impl Iterator<Item = &'a crate::scene::SceneObject> {
+    scene
         .scene
         .objects
         .iter()
-        .filter(|o| o.room == room && o.kind == ObjectKind::Furniture)
+        .filter(move |o| o.room == room && o.kind == ObjectKind::Furniture)
         .filter(|o| {
             scene
                 .scene
@@ -279,6 +281,12 @@ fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String,
                 .get(&o.asset)
                 .is_some_and(|a| !a.surfaces.is_empty())
         })
+}
+
+/// Splits the room's small objects over the supporting entities present: per entity a plan
+/// holding only that entity's share.
+fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String, RoomPlan)> {
+    let furniture: Vec<(String, String)> = surface_furniture(scene, room)
         .map(|o| (o.id.clone(), scene.scene.built_as(o).to_string()))
         .collect();
     let mut per: BTreeMap<String, RoomPlan> = BTreeMap::new();
@@ -334,18 +342,7 @@ const LEFTOVER_HOSTS: usize = 3;
 
 /// Furniture with a surface that may take leftovers: tables, desks and counters first.
 fn leftover_hosts(scene: &SceneState, room: &str) -> Vec<String> {
-    let mut hosts: Vec<(String, bool)> = scene
-        .scene
-        .objects
-        .iter()
-        .filter(|o| o.room == room && o.kind == ObjectKind::Furniture)
-        .filter(|o| {
-            scene
-                .scene
-                .assets
-                .get(&o.asset)
-                .is_some_and(|a| !a.surfaces.is_empty())
-        })
+    let mut hosts: Vec<(String, bool)> = surface_furniture(scene, room)
         .map(|o| {
             let cat = scene.scene.built_as(o);
             let tableish = ["table", "desk", "counter", "sideboard", "console"]
