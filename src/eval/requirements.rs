@@ -498,8 +498,17 @@ pub fn room_name_meets(label: &str, name: &str, label_words: bool) -> bool {
     let normal = normalize_label(label);
     let key = room_type_key(label);
     let n = normalize_label(name);
+    // "kitchen-diner" is a kitchen.
+    let raw = name.trim().to_lowercase();
+    let hyphen_part = label_words
+        && !normal.contains(' ')
+        && raw.contains('-')
+        && raw
+            .split(['-', ' '])
+            .any(|p| crate::prompt::singular(p) == normal);
     n == normal
         || label_words && n.ends_with(&format!(" {normal}"))
+        || hyphen_part
         || key.is_some() && room_type_key(name) == key
 }
 

@@ -168,6 +168,10 @@ pub struct HouseTables {
     pub wet_floor_materials: Vec<String>,
     /// Style words that apply to a whole house.
     pub style_words: Vec<String>,
+    /// Short words that count rooms of a type after a number ("3-bed, 2-bath"), as
+    /// word -> room type.
+    #[serde(default)]
+    pub count_words: BTreeMap<String, String>,
 }
 
 /// Errors in the room data.
@@ -570,8 +574,13 @@ fn check_house(h: &HouseTables, types: &BTreeMap<String, RoomType>) -> Result<()
     for t in &h.entrance_preference {
         known("entrance_preference", t)?;
     }
-    for t in h.items_to_rooms.values().flatten() {
-        known("items_to_rooms", t)?;
+    for t in h
+        .items_to_rooms
+        .values()
+        .flatten()
+        .chain(h.count_words.values())
+    {
+        known("items_to_rooms or count_words", t)?;
     }
     for m in h.materials.values().chain(&h.wet_floor_materials) {
         if crate::assets::material::material(m).is_none() {

@@ -26,6 +26,8 @@ struct RulesFile {
     min_share: f64,
     min_share_with_evidence: f64,
     room_space_words: Vec<String>,
+    room_part_words: Vec<String>,
+    min_room_share: f64,
 }
 
 /// Errors loading the grounding rules.
@@ -52,6 +54,9 @@ pub struct Rules {
     /// Object share from which a counted or listed noun is an object.
     pub min_share_with_evidence: f64,
     room_space_words: Vec<String>,
+    room_part_words: Vec<String>,
+    /// Room share from which a word the registry does not know is read as a room.
+    pub min_room_share: f64,
 }
 
 impl Rules {
@@ -77,6 +82,8 @@ impl Rules {
             min_share: f.min_share,
             min_share_with_evidence: f.min_share_with_evidence,
             room_space_words: f.room_space_words,
+            room_part_words: f.room_part_words,
+            min_room_share: f.min_room_share,
         })
     }
 
@@ -84,6 +91,12 @@ impl Rules {
     /// "salon floor").
     pub fn is_room_space_word(&self, word: &str) -> bool {
         self.room_space_words.iter().any(|w| w == word)
+    }
+
+    /// True for a word that makes a room of the thing before it ("block" in "toilet block",
+    /// "quarters" in "staff quarters").
+    pub fn is_room_part_word(&self, word: &str) -> bool {
+        self.room_part_words.iter().any(|w| w == word)
     }
 
     fn under_any(&self, s: SynsetId, anchors: &[SynsetId]) -> bool {
@@ -128,6 +141,8 @@ pub struct NounInfo {
     pub placeable: Vec<SynsetId>,
     /// Whether a sense names a room or building.
     pub roomlike: bool,
+    /// Weight of the room or building senses over all senses, 0..=1.
+    pub room_share: f64,
     /// Lexicographer file of the heaviest sense ("noun.feeling").
     pub lexname: String,
 }
@@ -159,6 +174,7 @@ pub fn noun_info(words: &str) -> Option<NounInfo> {
     let mut placed = 0.0;
     let mut placeable: Vec<(f64, usize, SynsetId)> = Vec::new();
     let mut roomlike = false;
+    let mut roomed = 0.0;
     let mut heaviest: Option<(f64, SynsetId)> = None;
     for (rank, s) in senses.iter().enumerate() {
         let w = f64::from(s.count) + r.count_smoothing;
@@ -167,7 +183,10 @@ pub fn noun_info(words: &str) -> Option<NounInfo> {
             placed += w;
             placeable.push((w, rank, s.synset));
         }
-        roomlike |= r.roomlike(s.synset);
+        if r.roomlike(s.synset) {
+            roomlike = true;
+            roomed += w;
+        }
         if heaviest.is_none_or(|(hw, _)| w > hw) {
             heaviest = Some((w, s.synset));
         }
@@ -178,6 +197,7 @@ pub fn noun_info(words: &str) -> Option<NounInfo> {
         share: if total > 0.0 { placed / total } else { 0.0 },
         placeable: placeable.into_iter().map(|(_, _, s)| s).collect(),
         roomlike,
+        room_share: if total > 0.0 { roomed / total } else { 0.0 },
         lexname: heaviest.map_or_else(String::new, |(_, s)| wn.lexname(s).to_string()),
     })
 }

@@ -374,6 +374,11 @@ impl Lexicon {
             .map(|hex| (1, w.to_string(), hex.as_str()))
     }
 
+    /// A number written as digits or a word ("3", "three"), without a token.
+    pub fn number_word(&self, w: &str) -> Option<u32> {
+        w.parse().ok().or_else(|| self.numbers.get(w).copied())
+    }
+
     /// Number word or digits.
     pub fn number(&self, token: &Token) -> Option<u32> {
         match token.kind {

@@ -154,17 +154,31 @@ pub fn read(prompt: &str) -> Reading {
     let lex = lexicon();
     let kb = knowledge();
     let toks = tokens::lex(prompt);
-    let chunks: Vec<Vec<chunk::Chunk>> = tokens::sentences(&toks)
+    let mut chunks: Vec<Vec<chunk::Chunk>> = tokens::sentences(&toks)
         .into_iter()
         .map(|r| chunk::chunk_sentence(lex, kb, &toks, r))
         .collect();
     let st = rooms::structure(lex, &toks, &chunks);
-    let mut it = interpret::Interp::new(lex, &toks, st.rooms.clone(), st.scope);
-    for (i, ch) in chunks.iter().enumerate() {
-        if st.list_sentence == Some(i) {
-            // The room list; its phrases are rooms, not objects.
-            continue;
+    // List items read as rooms are rooms for the interpreter too.
+    if let Some(list) = st.list_sentence.and_then(|i| chunks.get_mut(i)) {
+        for (k, np) in &st.coerced {
+            if let Some(c) = list.get_mut(*k) {
+                c.item = chunk::Item::Np(Box::new(np.clone()));
+            }
         }
+        // "A student flat with ...": the words before the list name the building.
+        for c in list.iter_mut().take(st.head_chunks) {
+            if let chunk::Item::Np(np) = &mut c.item
+                && matches!(np.head, chunk::Head::Object { .. })
+            {
+                np.head = chunk::Head::NonObject;
+            }
+        }
+    }
+    let mut it = interpret::Interp::new(lex, &toks, st.rooms.clone(), st.scope);
+    // The room list's phrases are rooms; what they hold ("a meeting room with a long table")
+    // goes in them.
+    for ch in &chunks {
         it.sentence(ch);
     }
     let (mentions, mut rooms) = finish(lex, &toks, prompt, it);

@@ -351,6 +351,14 @@ pub(crate) fn parse_np(
     // Modifiers.
     let mods_from = j;
     while j < end {
+        // "an operating theatre": a room WordNet knows as a whole is no modifier + room.
+        if kb.room_type_at(tokens, j).is_none()
+            && let (Some(a), Some(b)) = (at(j), at(j + 1))
+            && j + 2 <= end
+            && wordnet_room_words(&format!("{a} {}", lex.singular(b))).is_some()
+        {
+            break;
+        }
         match modifier_at(lex, kb, tokens, j, sentence_start) {
             Some(m) if j + m.len <= end => {
                 np.attrs.add(&m);
@@ -392,11 +400,11 @@ pub(crate) fn parse_np(
     // room type along its hypernyms.
     if room_len == 0
         && noun_len == 0
-        && let Some((key, words)) = wordnet_room(lex, tokens, j, end)
+        && let Some((n, key, words)) = wordnet_room(lex, tokens, j, end)
     {
-        np.plural = lex.is_plural(w);
+        np.plural = lex.is_plural(&tokens[j + n - 1].text);
         np.head = Head::Room { key, words };
-        return Some((np, j + 1));
+        return Some((np, j + n));
     }
     if room_len > 0 && room_len >= noun_len {
         let (mut n, key) = room.unwrap_or((0, ""));
@@ -405,6 +413,8 @@ pub(crate) fn parse_np(
             .room_type_at(tokens, j + n)
             .filter(|(n2, _)| j + n + n2 <= end)
             && lex.noun_at(tokens, j + n).is_none_or(|(l, ..)| l <= n2)
+            // "the pantry stores sacks": a verb.
+            && word(tokens, j + n).is_none_or(|x| lex.verb(x).is_none())
         {
             n += n2;
         }
@@ -783,7 +793,12 @@ fn noun_follows(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], k: usize) -> bo
         && !super::wordnet::wordnet()
             .base_forms(x, super::wordnet::Pos::Verb)
             .is_empty();
+    let wn = super::wordnet::wordnet();
+    // "three bedrooms upstairs": a word WordNet also reads as an adverb, and no object of
+    // the lexicon, ends the phrase.
+    let adverb = lex.noun_at(tokens, k).is_none() && wn.has_pos(x, super::wordnet::Pos::Adv);
     compound_word(lex, kb, tokens, k)
+        && !adverb
         && (lex.noun_at(tokens, k).is_some() || ground::is_noun(x))
         && !ground::rules().is_room_space_word(&lex.singular(x))
         && kb.room_type_at(tokens, k).is_none()
@@ -1056,10 +1071,19 @@ fn type_for_object(lex: &Lexicon, noun: &str) -> String {
     {
         return t.clone();
     }
-    reg.rooms()
-        .iter()
-        .find(|(_, r)| r.furniture.iter().any(|i| i.noun == canonical))
-        .map_or_else(|| "room".to_string(), |(k, _)| k.clone())
+    let furnished_by = |noun: &str| {
+        reg.rooms()
+            .iter()
+            .find(|(_, r)| r.furniture.iter().any(|i| i.noun == noun))
+            .map(|(k, _)| k.clone())
+    };
+    if let Some(k) = furnished_by(&canonical) {
+        return k;
+    }
+    // "a bunk room": a bunk is a bed, and bedrooms have beds.
+    ground::family(noun, &|n: &str| furnished_by(n).is_some())
+        .and_then(|f| furnished_by(&f.noun))
+        .unwrap_or_else(|| "room".to_string())
 }
 
 /// One or two nouns before a room word ("kiln room", "pottery storage room"): (words used,
@@ -1077,7 +1101,18 @@ fn room_compound(
             return None;
         }
         let w = word(tokens, j + m - 1)?;
-        let nounish = ground::is_noun(w) || lex.noun_at(tokens, j + m - 1).is_some();
+        // A word WordNet does not know at all ("cardio room") may name the room too.
+        let wn = super::wordnet::wordnet();
+        let unknown = w.chars().all(char::is_alphabetic)
+            && [
+                super::wordnet::Pos::Noun,
+                super::wordnet::Pos::Verb,
+                super::wordnet::Pos::Adj,
+                super::wordnet::Pos::Adv,
+            ]
+            .iter()
+            .all(|&p| !wn.has_pos(w, p));
+        let nounish = ground::is_noun(w) || lex.noun_at(tokens, j + m - 1).is_some() || unknown;
         if !nounish
             || lex.is_function_word(w)
             || lex.preposition_at(tokens, j + m - 1).is_some()
@@ -1103,6 +1138,23 @@ fn room_compound(
             };
             return Some((m + rn, key, written.join(" ")));
         }
+        // "a toilet block", "the staff quarters": a room for the things before the word.
+        if let Some(part) = word(tokens, j + m)
+            && ground::rules().is_room_part_word(&lex.singular(part))
+            && (j + m + 1 >= end || lex.noun_at(tokens, j + m + 1).is_none())
+        {
+            let mut written: Vec<String> =
+                tokens[j..=j + m].iter().map(|t| t.text.clone()).collect();
+            if let Some(l) = written.last_mut() {
+                *l = lex.singular(l);
+            }
+            // "a foam block" names no room: the thing must be one some room type holds.
+            let key = type_for_object(lex, &lex.singular(&tokens[j + m - 1].text));
+            if key == "room" {
+                return None;
+            }
+            return Some((m + 1, key, written.join(" ")));
+        }
     }
     None
 }
@@ -1110,7 +1162,12 @@ fn room_compound(
 /// A single word WordNet knows as a room, building or place of business, and rarely as a
 /// thing ("scullery", "bakehouse"): the nearest registry type along its hypernyms, else a
 /// generic room.
-fn wordnet_room(lex: &Lexicon, tokens: &[Token], j: usize, end: usize) -> Option<(String, String)> {
+fn wordnet_room(
+    lex: &Lexicon,
+    tokens: &[Token],
+    j: usize,
+    end: usize,
+) -> Option<(usize, String, String)> {
     if j >= end {
         return None;
     }
@@ -1118,8 +1175,29 @@ fn wordnet_room(lex: &Lexicon, tokens: &[Token], j: usize, end: usize) -> Option
     if lex.is_function_word(w) || lex.is_non_object(w) || lex.landmark(w).is_some() {
         return None;
     }
+    // A two-word room WordNet knows ("operating theatre", "living quarters").
+    if j + 1 < end
+        && let Some(w2) = word(tokens, j + 1)
+        && let Some(r) = wordnet_room_words(&format!("{w} {}", lex.singular(w2)))
+    {
+        return Some((2, r.0, r.1));
+    }
+    // "a farmhouse table": a noun after it is the head.
+    if j + 1 < end
+        && word(tokens, j + 1).is_some_and(|x| {
+            ground::is_noun(x) && lex.verb(x).is_none() && !lex.is_function_word(x)
+        })
+    {
+        return None;
+    }
+    wordnet_room_words(w).map(|(key, lemma)| (1, key, lemma))
+}
+
+/// (type, lemma) of words WordNet knows as a room and rarely as a thing.
+fn wordnet_room_words(w: &str) -> Option<(String, String)> {
     let info = ground::noun_info(w)?;
-    if !info.roomlike || info.share >= ground::rules().min_share {
+    let r = ground::rules();
+    if !info.roomlike || info.share >= r.min_share || info.room_share < r.min_room_share {
         return None;
     }
     let reg = crate::knowledge::knowledge();

@@ -139,6 +139,14 @@ pub(crate) struct Structure {
     pub list_sentence: Option<usize>,
     /// What the reader capped, in words for the user.
     pub notes: Vec<String>,
+    /// Phrases of the room list that name rooms though their head is a thing ("a staff
+    /// toilet"): (chunk index in the list sentence, the phrase as a room).
+    pub coerced: Vec<(usize, Np)>,
+    /// Chunks of the list sentence before its list: the building, not objects in it.
+    pub head_chunks: usize,
+    /// Room words that name the single room under its old use ("the spare room" turned
+    /// into a home gym).
+    pub aliases: Vec<String>,
 }
 
 fn ordinal_word(n: u32) -> &'static str {
@@ -166,17 +174,32 @@ fn ordinal_word(n: u32) -> &'static str {
 /// Where the room list of a sentence starts: after "with", a possession verb ("includes",
 /// "features", "has", "consists of"), "including", or a colon.
 fn list_start(tokens: &[Token], chunks: &[Chunk]) -> Option<usize> {
+    let word = |i: usize| tokens.get(i).map_or("", |t| t.text.as_str());
+    // "divided into", "split into", "made up of": the list starts after the phrase.
+    let phrase_end = chunks.iter().flat_map(|c| c.range.clone()).find_map(|i| {
+        matches!(
+            (word(i), word(i + 1)),
+            (
+                "divided" | "split" | "organised" | "organized" | "arranged",
+                "into"
+            ) | ("made", "up")
+        )
+        .then_some(i + 1)
+    });
     chunks.iter().position(|c| match &c.item {
         Item::With | Item::Including => true,
-        Item::Verb(class, _) => class == "possess",
+        // "has been turned into": an auxiliary, no possession.
+        Item::Verb(class, _) => class == "possess" && word(c.range.end) != "been",
         Item::Comma => tokens.get(c.range.start).is_some_and(|t| t.is_punct(':')),
-        _ => false,
+        _ => phrase_end.is_some_and(|e| c.range.contains(&e) || c.range.start == e),
     })
 }
 
-/// True for "room", "rooms", "space": a room word that names no type.
+/// True for "room", "rooms", "space": a room word that names no type. A room the registry
+/// has no type for ("scullery", "bunk room") also takes the generic type, but it is named.
 fn generic_room(np: &Np) -> bool {
-    matches!(&np.head, Head::Room { key, .. } if key == "room")
+    matches!(&np.head, Head::Room { key, words } if key == "room"
+        && crate::knowledge::knowledge().room_type_of(words) == Some("room"))
 }
 
 /// A zone inside a room rather than a room: "a seating area", "a reading nook".
@@ -188,19 +211,34 @@ fn zone(np: &Np) -> bool {
 /// counts or introduces ("a mudroom by the entrance has ...", "Beyond it lie three treatment
 /// rooms") or, definite, has its own verb ("The dining room features ...", "..., while the
 /// reading room contains ..."). Generic rooms ("the room") and zones are not introduced.
-fn introduced_rooms(chunks: &[Chunk]) -> Vec<&Np> {
+///
+/// In a house (`in_house`: the prompt names at least two rooms), every room phrase names a
+/// room of it, a preposition's object too ("the hall opens into a large sitting room", "the
+/// parents sleep in the master bedroom"), and so does a zone a room type names ("Beyond the
+/// lounge lies a dining area"); corners and nooks stay parts of their room.
+fn introduced_rooms(chunks: &[Chunk], in_house: bool) -> Vec<&Np> {
     let mut out = Vec::new();
     for (k, c) in chunks.iter().enumerate() {
         let Item::Np(np) = &c.item else { continue };
-        if !matches!(np.head, Head::Room { .. }) || generic_room(np) || np.negated || zone(np) {
+        let Head::Room { key, words } = &np.head else {
+            continue;
+        };
+        let typed_zone =
+            in_house && key != "room" && !["corner", "nook"].iter().any(|z| words.ends_with(z));
+        if generic_room(np) || np.negated || (zone(np) && !typed_zone) {
             continue;
         }
+        let prep = k > 0 && matches!(chunks[k - 1].item, Item::Prep(_));
         let governed = k > 0
             && matches!(
                 chunks[k - 1].item,
                 Item::Prep(_) | Item::Of | Item::For | Item::Without | Item::SetFor
             );
-        if governed || np.det.as_deref() == Some("possessive") {
+        if (governed && !(in_house && prep)) || np.det.as_deref() == Some("possessive") {
+            continue;
+        }
+        if in_house {
+            out.push(np.as_ref());
             continue;
         }
         let introduces = np.number.is_some()
@@ -279,19 +317,43 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], sentences: &[Vec<Chunk>
         .unwrap_or_default();
     let density = head_np.as_ref().and_then(|(np, _)| density_of(lex, np));
     // Room phrases after "with"; "X with en-suite Ys" makes Ys children of X.
+    let coerced = with_at.map_or_else(Vec::new, |w| coerced_rooms(&first[w + 1..]));
     let mut listed: Vec<(&Np, Option<usize>)> = Vec::new();
     if let Some(w) = with_at {
         let mut last_room: Option<usize> = None;
         let mut after_with = false;
         let mut after_prep = false;
-        for c in &first[w + 1..] {
+        for (k, c) in first[w + 1..].iter().enumerate() {
+            let item = coerced
+                .iter()
+                .find(|(at, _)| *at == k)
+                .map(|(_, np)| np)
+                .or(match &c.item {
+                    Item::Np(np) => Some(np.as_ref()),
+                    _ => None,
+                });
             match &c.item {
-                Item::Np(np) => {
+                Item::Np(_) => {
+                    let Some(np) = item else { continue };
                     // "in the middle of the room" is a place, not a listed room; "three
                     // rooms:" counts the rooms that follow.
-                    let listed_room = !after_prep && !np.is_definite() && !generic_room(np);
+                    // "..., and the manager's office": a definite list item is a room too,
+                    // unless the list named it already.
+                    let named_before = |w: &str| {
+                        listed
+                            .iter()
+                            .any(|(p, _)| matches!(&p.head, Head::Room { words, .. } if words == w))
+                    };
+                    // After a preposition only a new room counts ("connected to an open
+                    // kitchen"), not a place ("in the middle of the room").
+                    let listed_room = (!after_prep || !np.is_definite())
+                        && !generic_room(np)
+                        && match &np.head {
+                            Head::Room { words, .. } => !np.is_definite() || !named_before(words),
+                            _ => false,
+                        };
                     after_prep = false;
-                    if listed_room && let Head::Room { .. } = np.head {
+                    if listed_room {
                         let parent = if after_with { last_room } else { None };
                         listed.push((np, parent));
                         if parent.is_none() {
@@ -306,6 +368,13 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], sentences: &[Vec<Chunk>
             }
         }
     }
+    // "a 3 bedroom, 2 bathroom home", "a two-bedroom apartment": rooms counted before the list.
+    let head_end = with_at.and_then(|w| first.get(w)).map_or_else(
+        || first.last().map_or(0, |c| c.range.end),
+        |c| c.range.start,
+    );
+    let head_start = first.first().map_or(0, |c| c.range.start);
+    let counted = counted_rooms(lex, &tokens[head_start..head_end.max(head_start)]);
     let head_is_room = head_np
         .as_ref()
         .is_some_and(|(np, _)| matches!(np.head, Head::Room { .. }) && !generic_room(np));
@@ -316,7 +385,9 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], sentences: &[Vec<Chunk>
     // "A pharmacy with a waiting area": one room with a zone; "a bedroom with an en-suite
     // bathroom": two rooms.
     let single_zone = listed.len() == 1 && listed.iter().all(|(np, _)| zone(np));
-    let is_house = listed_count >= 2 || (listed_count == 1 && head_is_room && !single_zone);
+    let counted_n: u32 = counted.iter().map(|(_, _, n)| n).sum();
+    let is_house =
+        listed_count + counted_n >= 2 || (listed_count == 1 && head_is_room && !single_zone);
     let mut st = if is_house {
         house_from_list(
             lex,
@@ -327,7 +398,7 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], sentences: &[Vec<Chunk>
             &listed,
         )
     } else {
-        single_room(lex, first, sentences)
+        single_room(lex, tokens, first, sentences)
     };
     st.size_scale = if is_house {
         size_scale
@@ -336,6 +407,12 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], sentences: &[Vec<Chunk>
             .first()
             .map_or(size_scale, |r| r.size_scale_or(size_scale))
     };
+    if is_house {
+        add_counted_rooms(&counted, &mut st);
+        let at = with_at.map_or(0, |w| w + 1);
+        st.coerced = coerced.into_iter().map(|(k, np)| (at + k, np)).collect();
+        st.head_chunks = with_at.unwrap_or(0);
+    }
     st.styles = styles;
     st.density = density;
     st.list_sentence = is_house.then_some(list_at);
@@ -343,20 +420,183 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], sentences: &[Vec<Chunk>
     st
 }
 
+/// List items that name a thing with a room sense among rooms ("..., a sluice room and a
+/// staff toilet"): in a list of at least two rooms, a phrase outside any room's "with"
+/// whose head WordNet also knows as a room is that room. (index in `items`, the phrase as a
+/// room).
+fn coerced_rooms(items: &[Chunk]) -> Vec<(usize, Np)> {
+    let rooms = items
+        .iter()
+        .enumerate()
+        .filter(|(k, c)| {
+            let governed = *k > 0 && matches!(items[k - 1].item, Item::Prep(_));
+            let Item::Np(np) = &c.item else { return false };
+            matches!(np.head, Head::Room { .. }) && !generic_room(np) && !zone(np) && !governed
+        })
+        .count();
+    if rooms < 2 {
+        return Vec::new();
+    }
+    let reg = crate::knowledge::knowledge();
+    let mut out = Vec::new();
+    let mut in_with = false;
+    let mut after_prep = false;
+    for (k, c) in items.iter().enumerate() {
+        match &c.item {
+            Item::Np(np) => {
+                match &np.head {
+                    Head::Room { .. } => in_with = false,
+                    Head::Object { noun, .. } if !in_with && !after_prep => {
+                        let head = noun.rsplit(' ').next().unwrap_or(noun);
+                        let roomlike = super::ground::noun_info(head).is_some_and(|i| i.roomlike);
+                        if roomlike {
+                            let key = super::ground::room_family(head, &|n: &str| {
+                                reg.room_type_of(n).is_some()
+                            })
+                            .and_then(|f| reg.room_type_of(&f.noun).map(str::to_string))
+                            .unwrap_or_else(|| "room".to_string());
+                            let mut room = (**np).clone();
+                            room.head = Head::Room {
+                                key,
+                                words: noun.clone(),
+                            };
+                            out.push((k, room));
+                        }
+                    }
+                    _ => {}
+                }
+                after_prep = false;
+            }
+            Item::With => in_with = true,
+            Item::Prep(_) => after_prep = true,
+            _ => {}
+        }
+    }
+    out
+}
+
+/// Rooms counted by a number before a room word ("3 bedroom", "two-bedroom", "2-bath"):
+/// (type, words, count).
+fn counted_rooms(lex: &Lexicon, tokens: &[Token]) -> Vec<(String, String, u32)> {
+    let reg = crate::knowledge::knowledge();
+    let house = crate::knowledge::rooms::registry().house();
+    let room_of = |w: &str| -> Option<(String, String)> {
+        let w = lex.singular(w);
+        if let Some(t) = reg.room_type_of(&w).filter(|t| *t != "room") {
+            return Some((t.to_string(), w));
+        }
+        let t = house.count_words.get(&w)?;
+        Some((t.clone(), t.replace('_', " ")))
+    };
+    let mut out: Vec<(String, String, u32)> = Vec::new();
+    for (i, t) in tokens.iter().enumerate() {
+        let found = match t.text.split_once('-') {
+            Some((a, b)) => lex.number_word(a).zip(room_of(b)),
+            None => lex
+                .number(t)
+                .zip(tokens.get(i + 1).and_then(|x| room_of(&x.text))),
+        };
+        if let Some((n, (key, words))) = found
+            && (1..=MAX_PER_PHRASE).contains(&n)
+            && !out.iter().any(|(k, ..)| *k == key)
+        {
+            out.push((key, words, n));
+        }
+    }
+    out
+}
+
+/// Adds the rooms counted before the list that the list does not name, up to their counts.
+fn add_counted_rooms(counted: &[(String, String, u32)], st: &mut Structure) {
+    let registry = crate::knowledge::knowledge().registry();
+    let before = st.rooms.len();
+    for (key, words, n) in counted {
+        let have = st
+            .rooms
+            .iter()
+            .filter(|r| registry.is_a(&r.room_type, key))
+            .count() as u32;
+        for k in have..*n {
+            if st.rooms.len() >= MAX_ROOMS {
+                break;
+            }
+            let name = if *n > 1 {
+                format!("{words} {}", k + 1)
+            } else {
+                words.clone()
+            };
+            let mut r = RoomReading::new(key, words, name);
+            r.ordinal = (*n > 1).then_some(k + 1);
+            st.rooms.push(r);
+        }
+    }
+    if st.rooms.len() > before {
+        unique_names(&mut st.rooms);
+    }
+}
+
 /// One room: the first room phrase that names a type (the head, usually; "The room is dimly
 /// lit ... in a cozy living room": the living room), else a generic room.
-fn single_room(lex: &Lexicon, first: &[Chunk], sentences: &[Vec<Chunk>]) -> Structure {
-    fn typed(chunks: &[Chunk]) -> Option<&Np> {
+fn single_room(
+    lex: &Lexicon,
+    tokens: &[Token],
+    first: &[Chunk],
+    sentences: &[Vec<Chunk>],
+) -> Structure {
+    // A room with a registry type over a named room without one ("The spare room has been
+    // turned into a home gym": a home gym).
+    fn typed(chunks: &[Chunk], registry_type: bool) -> Option<&Np> {
         chunks.iter().find_map(|c| match &c.item {
             Item::Np(np)
-                if matches!(np.head, Head::Room { .. }) && !generic_room(np) && !np.negated =>
+                if matches!(&np.head, Head::Room { key, .. } if !registry_type || key != "room")
+                    && !generic_room(np)
+                    && !np.negated =>
             {
                 Some(np.as_ref())
             }
             _ => None,
         })
     }
-    let room_np = typed(first).or_else(|| sentences.iter().skip(1).find_map(|s| typed(s)));
+    // "The spare room has been turned into a home gym", "a garage used as a workshop": the
+    // room after "into" or "as" is what the room is now.
+    let role = first
+        .iter()
+        .enumerate()
+        .skip(1)
+        .find_map(|(k, c)| match &c.item {
+            Item::Np(np)
+                if matches!(np.head, Head::Room { .. })
+                    && !generic_room(np)
+                    && c.range.start > 0
+                    && tokens
+                        .get(c.range.start - 1)
+                        .is_some_and(|t| t.text == "into" || t.text == "as")
+                    && first[..k].iter().any(
+                        |p| matches!(&p.item, Item::Np(n) if matches!(n.head, Head::Room { .. })),
+                    ) =>
+            {
+                Some(np.as_ref())
+            }
+            _ => None,
+        });
+    let aliases: Vec<String> = role
+        .map(|_| {
+            first
+                .iter()
+                .filter_map(|c| match &c.item {
+                    Item::Np(np) => match &np.head {
+                        Head::Room { words, .. } => Some(words.clone()),
+                        _ => None,
+                    },
+                    _ => None,
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    let room_np = role
+        .or_else(|| typed(first, true))
+        .or_else(|| typed(first, false))
+        .or_else(|| sentences.iter().skip(1).find_map(|s| typed(s, false)));
     let room_np = room_np.or_else(|| {
         first.iter().find_map(|c| match &c.item {
             Item::Np(np) if matches!(np.head, Head::Room { .. }) => Some(np.as_ref()),
@@ -367,6 +607,14 @@ fn single_room(lex: &Lexicon, first: &[Chunk], sentences: &[Vec<Chunk>]) -> Stru
         Some(Head::Room { key, words }) => RoomReading::new(key, words, words.clone()),
         _ => RoomReading::new("room", "room", "room".into()),
     };
+    // The converted room keeps its name ("the garage", furnished as a woodworking shop);
+    // its new use gives the type.
+    if role.is_some()
+        && let Some(old) = aliases.first().filter(|w| **w != room.words)
+    {
+        room.name = old.clone();
+        room.words = old.clone();
+    }
     if let Some(np) = room_np {
         room.size_scale = size_of(lex, np);
         room.styles = np.attrs.styles.clone();
@@ -381,6 +629,9 @@ fn single_room(lex: &Lexicon, first: &[Chunk], sentences: &[Vec<Chunk>]) -> Stru
         density: None,
         list_sentence: None,
         notes: Vec::new(),
+        coerced: Vec::new(),
+        head_chunks: 0,
+        aliases,
     }
 }
 
@@ -500,6 +751,9 @@ fn house_from_list(
         density: None,
         list_sentence: None,
         notes,
+        coerced: Vec::new(),
+        head_chunks: 0,
+        aliases: Vec::new(),
     }
 }
 
@@ -507,22 +761,45 @@ fn house_from_list(
 /// is ("The dining room features ..." after "a living room with ..."). Zones ("the seating
 /// area has ...") stay parts of their room.
 fn add_subject_rooms(lex: &Lexicon, sentences: &[Vec<Chunk>], st: &mut Structure) {
-    let mut added = false;
     let list = st.list_sentence;
-    // Sentences before the room list describe the building, not its rooms.
-    let nps = sentences
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| list.is_none_or(|l| *i > l))
-        .flat_map(|(_, chunks)| introduced_rooms(chunks));
-    for np in nps {
+    // Sentences before the room list describe the building, not its rooms. A second pass,
+    // once the prompt is a house, reads every room phrase as a room of it.
+    let rooms_in = |in_house: bool| -> Vec<&Np> {
+        sentences
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| list.is_none_or(|l| *i > l))
+            .flat_map(|(_, chunks)| introduced_rooms(chunks, in_house))
+            .collect()
+    };
+    let mut added = add_rooms(lex, &rooms_in(false), st);
+    if st.rooms.len() >= 2 {
+        added |= add_rooms(lex, &rooms_in(true), st);
+    }
+    if added {
+        unique_names(&mut st.rooms);
+        st.scope = Scope::House;
+    }
+}
+
+/// Adds the rooms of `nps` that no room of the structure is; true when one was added.
+fn add_rooms(lex: &Lexicon, nps: &[&Np], st: &mut Structure) -> bool {
+    let mut added = false;
+    for &np in nps {
         let Head::Room { key, words } = &np.head else {
             continue;
         };
         // "The office is tidy" after "this open-plan office": the same room.
+        // Same words, or the same type under the same head word ("the bedroom" after "a
+        // guest bedroom") or under the type's own name ("the studio"); "the loft bedroom"
+        // is not "the bunk room".
+        let head = |w: &str| w.rsplit(' ').next().unwrap_or("").to_string();
+        let type_name = crate::knowledge::knowledge().room_type_of(words) == Some(key.as_str());
         let known = st.rooms.iter().any(|r| {
-            r.room_type == *key || r.words == *words || r.words.ends_with(&format!(" {words}"))
-        });
+            (r.room_type == *key && key != "room" && (type_name || head(&r.words) == head(words)))
+                || r.words == *words
+                || r.words.ends_with(&format!(" {words}"))
+        }) || st.aliases.contains(words);
         if known {
             continue;
         }
@@ -553,10 +830,7 @@ fn add_subject_rooms(lex: &Lexicon, sentences: &[Vec<Chunk>], st: &mut Structure
         }
         added = true;
     }
-    if added {
-        unique_names(&mut st.rooms);
-        st.scope = Scope::House;
-    }
+    added
 }
 
 /// Most rooms one phrase adds ("forty offices" gives 20; the rest is reported).
@@ -622,6 +896,17 @@ pub(crate) fn resolve(rooms: &[RoomReading], np: &Np, current: usize) -> Option<
         return None;
     };
     let registry = crate::knowledge::knowledge().registry();
+    if key == "room" && words != "room" {
+        // A word with no registry type ("the suites" after "two guest suites", "the
+        // scullery"): the rooms listed under those words.
+        let named: Vec<usize> = (0..rooms.len())
+            .filter(|&i| rooms[i].words == *words || rooms[i].words.ends_with(&format!(" {words}")))
+            .collect();
+        if !named.is_empty() {
+            let o = np.ordinal.unwrap_or(1).saturating_sub(1) as usize;
+            return named.get(o).copied();
+        }
+    }
     let key: &String = if rooms.iter().any(|r| r.room_type == *key) {
         key
     } else {

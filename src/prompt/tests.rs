@@ -354,6 +354,98 @@ fn house_splitting() {
     );
 }
 
+/// Room phrases read by grammar and WordNet rather than by a table of the prompts seen.
+#[test]
+fn rooms_from_grammar_and_wordnet() {
+    let words = |r: &Reading| -> Vec<String> { r.rooms.iter().map(|x| x.words.clone()).collect() };
+    // Counted before the list, in digits, words and housing shorthand.
+    let r = read("A 3 bedroom, 2 bathroom family home with a kitchen and a living room.");
+    assert_eq!(r.scope, Scope::House);
+    assert_eq!(
+        r.rooms.iter().filter(|x| x.room_type == "bedroom").count(),
+        3
+    );
+    assert_eq!(
+        r.rooms.iter().filter(|x| x.room_type == "bathroom").count(),
+        2
+    );
+    let r = read("A 2-bed flat with a kitchen and a living room.");
+    assert_eq!(
+        r.rooms.iter().filter(|x| x.room_type == "bedroom").count(),
+        2
+    );
+    // A room WordNet knows and the registry does not, named as written.
+    let r = read("A cottage with a kitchen and a scullery. The scullery holds a sink.");
+    assert!(
+        words(&r).contains(&"scullery".to_string()),
+        "{:?}",
+        words(&r)
+    );
+    assert_eq!(r.rooms[find(&r, "sink").room].words, "scullery");
+    // Two-word rooms, rooms made of a thing and a part word, rooms typed by their things.
+    let r = read("A vet practice with a waiting room, an operating theatre and a toilet block.");
+    assert_eq!(
+        words(&r),
+        ["waiting room", "operating theatre", "toilet block"]
+    );
+    assert_eq!(r.rooms[2].room_type, "bathroom");
+    let r = read("A cabin with a kitchen and a bunk room. The bunk room has two bunk beds.");
+    assert_eq!(r.rooms[1].room_type, "bedroom");
+    // A thing with a room sense in a list of rooms is a room; inside a room's "with" it is not.
+    let r = read("A clinic with a reception, a sluice room and a staff toilet.");
+    assert_eq!(r.rooms.len(), 3);
+    assert!(r.mentions.is_empty());
+    let r = read("A clinic with a reception and a bathroom with a toilet and a sink.");
+    assert_eq!(r.rooms.len(), 2);
+    assert_eq!(find(&r, "toilet").room, 1);
+    // What the list's rooms hold, and "each with" after counted rooms.
+    let r = read(
+        "An office suite: an open workspace with ten desks, a meeting room with a long table \
+         and the manager's office with a bookcase.",
+    );
+    assert_eq!(r.rooms.len(), 3);
+    assert_eq!(find(&r, "desk").room, 0);
+    assert_eq!(find(&r, "table").room, 1);
+    assert_eq!(find(&r, "bookshelf").room, 2);
+    let r = read("A guest house with three guest rooms, each with a double bed, and a lounge.");
+    let beds: Vec<usize> = r
+        .mentions
+        .iter()
+        .filter(|m| m.category == "bed")
+        .map(|m| m.room)
+        .collect();
+    assert_eq!(beds, [0, 1, 2]);
+    // A word that names listed rooms by their head ("Both suites").
+    let r = read("A hotel floor with a corridor and two guest suites. Both suites have a sofa.");
+    let sofas: Vec<usize> = r
+        .mentions
+        .iter()
+        .filter(|m| m.category == "sofa")
+        .map(|m| m.room)
+        .collect();
+    assert_eq!(sofas, [1, 2]);
+    // In a house, rooms named as a preposition's object are rooms of it.
+    let r = read(
+        "On the left is a cloakroom; to the right is a study. The hall opens into a large \
+         sitting room with a piano.",
+    );
+    assert!(
+        words(&r).contains(&"sitting room".to_string()),
+        "{:?}",
+        words(&r)
+    );
+    assert_eq!(r.rooms[find(&r, "piano").room].words, "sitting room");
+    // "turned into": what the room is now.
+    let r = read("The spare room has been turned into a home gym with a treadmill.");
+    assert_eq!(r.rooms[0].room_type, "gym");
+    // Words that end the phrase: an adverb after a room word, a verb after a room word.
+    let r = read("Our home has three bedrooms upstairs and a kitchen downstairs.");
+    assert_eq!(
+        r.rooms.iter().filter(|x| x.room_type == "bedroom").count(),
+        3
+    );
+}
+
 mod robustness {
     use proptest::prelude::*;
 

@@ -457,8 +457,23 @@ impl<'a> Interp<'a> {
             c.skip_np = false;
             return;
         }
+        // "Both suites have ..." after "two guest suites": a word WordNet does not read as a
+        // room still names the rooms listed under it.
+        let as_room = self.listed_room_word(np, chunk);
+        let np = as_room.as_ref().unwrap_or(np);
         match &np.head {
-            Head::Room { .. } => self.room_np(c, np, next_is_verb),
+            Head::Room { .. } => {
+                // "a meeting room with a long table", "three guest rooms, each with a bed",
+                // "there is a breakfast room ...": a room whose contents follow.
+                let contents_follow = match chunks.get(k + 1).map(|x| &x.item) {
+                    Some(Item::With) => true,
+                    Some(Item::Comma) => {
+                        matches!(chunks.get(k + 2).map(|x| &x.item), Some(Item::Each))
+                    }
+                    _ => false,
+                } || self.existential_before(chunk.range.start);
+                self.room_np(c, np, next_is_verb, contents_follow)
+            }
             Head::Landmark(class) => {
                 let Some(target) = landmark_target(class) else {
                     return;
@@ -538,7 +553,73 @@ impl<'a> Interp<'a> {
         }
     }
 
-    fn room_np(&mut self, c: &mut Clause, np: &Np, next_is_verb: bool) {
+    /// A phrase read as no object whose head word is the last word of a room of the house
+    /// ("suites" for "guest suite 1"), as a phrase naming that room.
+    fn listed_room_word(&self, np: &Np, chunk: &Chunk) -> Option<Np> {
+        if self.scope != Scope::House || !matches!(np.head, Head::NonObject) {
+            return None;
+        }
+        let last = self.tokens.get(chunk.range.end.checked_sub(1)?)?;
+        if !last.is_word() {
+            return None;
+        }
+        let w = self.lex.singular(&last.text);
+        let r = self
+            .rooms
+            .iter()
+            .find(|r| r.words == w || r.words.ends_with(&format!(" {w}")))?;
+        let mut room = np.clone();
+        room.head = Head::Room {
+            key: r.room_type.clone(),
+            words: r.words.clone(),
+        };
+        room.plural = self.lex.is_plural(&last.text);
+        Some(room)
+    }
+
+    /// True when "there is", "there are" (or "lies", "stand") comes right before `at`.
+    fn existential_before(&self, at: usize) -> bool {
+        let word = |i: usize| self.tokens.get(i).map(|t| t.text.as_str());
+        at >= 2
+            && word(at - 2) == Some("there")
+            && matches!(
+                word(at - 1),
+                Some("is" | "are" | "lies" | "lie" | "stands" | "stand" | "sits" | "sit")
+            )
+    }
+
+    /// Makes room `i` the room that the phrases that follow furnish. A pending "each X"
+    /// copy ends here.
+    fn switch_room(&mut self, i: usize) {
+        if let Some((first, rooms)) = self.each_rooms.take() {
+            self.copy_to_rooms(first, &rooms);
+        }
+        if i != self.room {
+            // The chunk was recorded under the old room.
+            let moved = self.spans.get_mut(self.room).and_then(Vec::pop);
+            self.room = i;
+            if let (Some(r), Some(sp)) = (moved, self.spans.get_mut(i)) {
+                sp.push(r);
+            }
+        }
+    }
+
+    fn room_np(&mut self, c: &mut Clause, np: &Np, next_is_verb: bool, contents_follow: bool) {
+        // "the hall opens into a sitting room with a piano": the piano is the sitting room's.
+        if contents_follow
+            && c.pending.is_some()
+            && self.scope == Scope::House
+            && let Some(i) = rooms::resolve(&self.rooms, np, self.room)
+            && i != self.room
+        {
+            c.pending = None;
+            self.switch_room(i);
+            c.subject_is_room = true;
+            c.ctx = Ctx::Room;
+            c.stack.clear();
+            c.focus.clear();
+            return;
+        }
         if let Some(p) = c.pending.take() {
             // "in the back of the room", "in the middle of the room".
             self.relate_pending(c, &p, Target::Room, Some("room"), None);
@@ -548,17 +629,11 @@ impl<'a> Interp<'a> {
             self.add_styles(&targets, np);
             return;
         }
-        if next_is_verb && c.verb.is_none() {
+        if (next_is_verb && c.verb.is_none()) || (contents_follow && self.scope == Scope::House) {
             if self.scope == Scope::House
                 && let Some(i) = rooms::resolve(&self.rooms, np, self.room)
-                && i != self.room
             {
-                // The chunk was recorded under the old room.
-                let moved = self.spans.get_mut(self.room).and_then(Vec::pop);
-                self.room = i;
-                if let (Some(r), Some(sp)) = (moved, self.spans.get_mut(i)) {
-                    sp.push(r);
-                }
+                self.switch_room(i);
             }
             // "Each private office has ...", "Both bathrooms have ...", "The bedrooms have
             // ...": the same contents in every such room.
@@ -575,6 +650,8 @@ impl<'a> Interp<'a> {
             }
             c.subject_is_room = true;
             c.ctx = Ctx::Room;
+            c.stack.clear();
+            c.focus.clear();
             self.focused = true;
         } else if c.verb.is_none() && c.subject.is_empty() {
             c.subject_is_room = true;
