@@ -847,15 +847,23 @@ fn compound_tail(
                 && !x.ends_with("ing")
                 && lex.preposition_at(tokens, k).is_none())
     };
+    // "a drill press": the noun before and this word are one WordNet noun.
+    let wn_compound = |k: usize| {
+        k > 0 && {
+            let c = format!("{} {}", tokens[k - 1].text, lex.singular(&tokens[k].text));
+            ground::noun_lemma(&c).is_some_and(|l| l == c)
+        }
+    };
     while len < 2
         && at + len < end
         && lex.noun_at(tokens, at + len).is_none()
         && tail_word(at + len)
         && ground::is_noun(&tokens[at + len].text)
         // "A sturdy squat rack anchors the centre": a verb in -s after "a ...".
-        && !(singular_det
-            && tokens[at + len].text.ends_with('s')
-            && !wn.base_forms(&tokens[at + len].text, super::wordnet::Pos::Verb).is_empty())
+        && (!singular_det
+            || !tokens[at + len].text.ends_with('s')
+            || wn.base_forms(&tokens[at + len].text, super::wordnet::Pos::Verb).is_empty()
+            || wn_compound(at + len))
     {
         len += 1;
         if lex.is_plural(&tokens[at + len - 1].text) {
@@ -881,7 +889,15 @@ fn compound_tail(
         .map(|t| t.text.as_str())
         .collect();
     // The known noun before makes the phrase an object phrase: a rarely physical head
-    // ("pit") still names the thing.
+    // ("pit") still names the thing. A compound WordNet knows grounds as a whole.
+    if len == 1 && wn_compound(at) {
+        let whole = [tokens[at - 1].text.as_str(), words[0]];
+        // Without a family it would be a stand-in: the known noun builds it better.
+        return ground_words(lex, &whole, true)
+            .ok()
+            .filter(|g| g.family.is_some())
+            .map(|g| (len, g));
+    }
     ground_words(lex, &words, true).ok().map(|g| (len, g))
 }
 

@@ -238,15 +238,20 @@ impl<'a> Interp<'a> {
         }
     }
 
-    /// The room of a sentence that opens with a place phrase naming one ("In the kitchen,").
+    /// The room of a sentence that opens with a place phrase naming one ("In the kitchen,",
+    /// "In the family bathroom there is ...", "In the hall stands ...").
     fn fronted_room(&self, chunks: &[Chunk]) -> Option<usize> {
         let [first, second, third, ..] = chunks else {
             return None;
         };
-        let (Item::Prep(_), Item::Np(np), Item::Comma) = (&first.item, &second.item, &third.item)
-        else {
+        let (Item::Prep(_), Item::Np(np)) = (&first.item, &second.item) else {
             return None;
         };
+        let word = self.tokens.get(third.range.start).map(|t| t.text.as_str());
+        let opens = matches!(third.item, Item::Comma | Item::Verb(..)) || word == Some("there");
+        if !opens {
+            return None;
+        }
         if !matches!(np.head, Head::Room { .. }) {
             return None;
         }
