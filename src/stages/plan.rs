@@ -495,6 +495,17 @@ mod tests {
     }
 
     #[test]
+    fn optional_pieces_stay_in_their_first_home() {
+        let has = |p: &RoomPlan, n: &str| p.furniture.iter().any(|w| w.noun == n);
+        let alone = plan_room(&prompt::read("a kitchen"));
+        assert!(has(&alone, "dining table") && has(&alone, "sink"));
+        let plans = plan_rooms(&prompt::read("A house with a kitchen and a dining room."));
+        assert!(!has(&plans[0], "dining table"), "{:?}", plans[0].furniture);
+        assert!(has(&plans[0], "sink"), "a kitchen keeps what it needs");
+        assert!(has(&plans[1], "dining table"));
+    }
+
+    #[test]
     fn place_settings_imply_seats_and_items() {
         let plan = plan_room(&prompt::read(
             "A dining room with a table set for 4 people.",

@@ -124,6 +124,34 @@ impl Builder<'_> {
         found
     }
 
+    /// True when another room of the house is the first home of a default `noun` (the
+    /// house table `items_to_rooms`): a kitchen gets no optional dining table of its own
+    /// when the house has a dining room.
+    fn hosted_elsewhere(&self, noun: &str) -> bool {
+        let Some(here) = self.reading.rooms.get(self.room) else {
+            return false;
+        };
+        if self.reading.rooms.len() < 2 {
+            return false;
+        }
+        let registry = crate::knowledge::rooms::registry();
+        let Some(home) = registry
+            .house()
+            .items_to_rooms
+            .get(noun)
+            .and_then(|v| v.first())
+        else {
+            return false;
+        };
+        !registry.is_a(&here.room_type, home)
+            && self
+                .reading
+                .rooms
+                .iter()
+                .enumerate()
+                .any(|(i, r)| i != self.room && registry.is_a(&r.room_type, home))
+    }
+
     /// Room-type defaults, scaled by density and room size, minus what the prompt covers or
     /// excludes.
     pub(super) fn defaults(&mut self) {
@@ -138,7 +166,8 @@ impl Builder<'_> {
             .get(self.room)
             .map_or(1.0, |r| r.size_scale);
         let add = |b: &mut Self, item: &KbItem, support: Support| {
-            if b.excluded(&item.noun) {
+            // An optional piece whose first home is another room of the house stays there.
+            if b.excluded(&item.noun) || (item.count[0] == 0 && b.hosted_elsewhere(&item.noun)) {
                 return;
             }
             if let Some(by) = b.covered_by(&item.noun) {
