@@ -495,6 +495,20 @@ mod tests {
     }
 
     #[test]
+    fn a_table_for_n_seats_n() {
+        let plan = plan_room(&prompt::read(
+            "A dining room with a long table for six people and a rug.",
+        ));
+        let chairs: u32 = plan
+            .furniture
+            .iter()
+            .filter(|w| w.noun == "chair")
+            .map(|w| w.count)
+            .sum();
+        assert_eq!(chairs, 6, "{:?}", plan.furniture);
+    }
+
+    #[test]
     fn optional_pieces_stay_in_their_first_home() {
         let has = |p: &RoomPlan, n: &str| p.furniture.iter().any(|w| w.noun == n);
         let alone = plan_room(&prompt::read("a kitchen"));

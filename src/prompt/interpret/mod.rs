@@ -386,6 +386,17 @@ impl<'a> Interp<'a> {
                 Item::SetFor => self.set_for(&mut c, chunks, k),
                 Item::For => {
                     c.skip_np = matches!(chunks.get(k + 1).map(|x| &x.item), Some(Item::Np(np)) if !matches!(np.head, Head::Object { .. }));
+                    // "a dining table for six", "a table for eight people": seats for that
+                    // many, as a table set for them.
+                    if let Some(Item::Np(np)) = chunks.get(k + 1).map(|x| &x.item)
+                        && let Some(n) = np.number
+                        && !matches!(np.head, Head::Object { .. } | Head::Room { .. })
+                        && let Some(t) = c.last_np.first().map(|r| r.m)
+                        && self.mentions[t].category.ends_with("table")
+                        && self.mentions[t].place_settings.is_none()
+                    {
+                        self.mentions[t].place_settings = Some(n);
+                    }
                 }
                 Item::Including => {
                     if let Some(f) = c.last_np.first().cloned() {
