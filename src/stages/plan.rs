@@ -506,6 +506,15 @@ mod tests {
             .map(|w| w.count)
             .sum();
         assert_eq!(chairs, 6, "{:?}", plan.furniture);
+        // A bare number ending the sentence.
+        let plan = plan_room(&prompt::read("A dining room with a table for eight."));
+        let chairs: u32 = plan
+            .furniture
+            .iter()
+            .filter(|w| w.noun.ends_with("chair"))
+            .map(|w| w.count)
+            .sum();
+        assert_eq!(chairs, 8, "{:?}", plan.furniture);
     }
 
     #[test]

@@ -388,9 +388,17 @@ impl<'a> Interp<'a> {
                     c.skip_np = matches!(chunks.get(k + 1).map(|x| &x.item), Some(Item::Np(np)) if !matches!(np.head, Head::Object { .. }));
                     // "a dining table for six", "a table for eight people": seats for that
                     // many, as a table set for them.
-                    if let Some(Item::Np(np)) = chunks.get(k + 1).map(|x| &x.item)
-                        && let Some(n) = np.number
-                        && !matches!(np.head, Head::Object { .. } | Head::Room { .. })
+                    let seats = match chunks.get(k + 1).map(|x| &x.item) {
+                        Some(Item::Np(np))
+                            if !matches!(np.head, Head::Object { .. } | Head::Room { .. }) =>
+                        {
+                            np.number
+                        }
+                        // A bare number ending the sentence ("a table for six.").
+                        Some(Item::Other(w)) => self.lex.number_word(w),
+                        _ => None,
+                    };
+                    if let Some(n) = seats
                         && let Some(t) = c.last_np.first().map(|r| r.m)
                         && self.mentions[t].category.ends_with("table")
                         && self.mentions[t].place_settings.is_none()
