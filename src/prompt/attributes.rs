@@ -268,6 +268,21 @@ pub(crate) fn modifier_at(
     if lex.noun_at(tokens, at).is_some() || kb.room_type_at(tokens, at).is_some() {
         return None;
     }
+    // "six long reading tables", "a waiting chair": a gerund the verb table lists, after a
+    // determiner, a number or a modifier and before a noun, modifies the noun.
+    let after_det = at > 0
+        && tokens.get(at - 1).is_some_and(|p| {
+            lex.determiner(&p.text).is_some()
+                || lex.number(p).is_some()
+                || (p.is_word() && !lex.is_function_word(&p.text))
+        });
+    if after_det
+        && w.ends_with("ing")
+        && lex.verb(w).is_some()
+        && lex.noun_at(tokens, at + 1).is_some()
+    {
+        return Some(single(t, ModKind::Adjective(w.to_string())));
+    }
     if lex.is_function_word(w) || lex.landmark(w).is_some() {
         return None;
     }
@@ -324,7 +339,13 @@ pub(crate) fn modifier_at(
     // Participles ("scattered", "folded", "hanging"), unless the word is a noun WordNet
     // knows as written ("flowerbed", "seaweed", "building").
     let wn = super::wordnet::wordnet();
-    let noun_lemma = wn.is_lemma(w, super::wordnet::Pos::Noun);
+    // A gerund that is a noun too modifies a noun after it: "six reading tables".
+    let noun_lemma = wn.is_lemma(w, super::wordnet::Pos::Noun)
+        && !tokens.get(at + 1).is_some_and(|u| {
+            w.ends_with("ing")
+                && (lex.noun_at(tokens, at + 1).is_some()
+                    || wn.has_pos(&u.text, super::wordnet::Pos::Noun))
+        });
     if w.contains('-')
         || (w.len() > 4 && w.ends_with("ed") && !noun_lemma)
         || (w.len() > 5 && w.ends_with("ing") && next_wordish && !noun_lemma)

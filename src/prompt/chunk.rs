@@ -156,6 +156,12 @@ pub(crate) fn chunk_sentence(
                 i += 1;
                 continue;
             }
+            // "there is no longer a car in here".
+            "no" if tokens.get(i + 1).is_some_and(|t| t.text == "longer") => {
+                push(&mut out, Item::Without, 2);
+                i += 2;
+                continue;
+            }
             "including" => {
                 push(&mut out, Item::Including, 1);
                 i += 1;

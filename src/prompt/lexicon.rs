@@ -189,6 +189,11 @@ impl Lexicon {
                     });
                 }
                 spellings.insert(s.clone(), i);
+                // The tokenizer drops a possessive: "potter's wheel" is read "potter wheel".
+                if s.contains('\'') {
+                    let read = s.replace("'s ", " ").replace('\'', "");
+                    spellings.entry(read).or_insert(i);
+                }
             }
         }
         let set = |v: Vec<String>| v.into_iter().collect::<HashSet<String>>();
@@ -293,7 +298,12 @@ impl Lexicon {
             };
             let raw = words.join(" ");
             let last = words[len - 1];
-            let plural = self.is_plural(last) && !self.plurale_tantum(last);
+            // "a chest of drawers", "two chests of drawers": the word before "of" counts.
+            let counted = match words.iter().position(|w| *w == "of") {
+                Some(p) if p > 0 => words[0],
+                _ => last,
+            };
+            let plural = self.is_plural(counted) && !self.plurale_tantum(counted);
             if let Some(i) = self.entry_index(&raw) {
                 // "glasses", "shelves" as synonyms are plural even though listed verbatim.
                 return Some((len, i, plural || self.entry_plural_spelling(i, &raw)));
@@ -316,8 +326,11 @@ impl Lexicon {
     }
 
     fn entry_plural_spelling(&self, _i: usize, raw: &str) -> bool {
-        let last = raw.rsplit(' ').next().unwrap_or(raw);
-        self.is_plural(last) && !self.plurale_tantum(last)
+        let counted = match raw.split_once(" of ") {
+            Some((first, _)) => first.split(' ').next().unwrap_or(first),
+            None => raw.rsplit(' ').next().unwrap_or(raw),
+        };
+        self.is_plural(counted) && !self.plurale_tantum(counted)
     }
 
     /// Longest phrase at `at` found in a multi-word table: (words used, value).

@@ -434,7 +434,7 @@ pub(crate) fn parse_np(
         np.plural = lex.is_plural(&words[n - 1]);
         np.head = Head::Room {
             key: key.to_string(),
-            words: ws.join(" "),
+            words: room_name(lex, tokens, mods_from, j, ws.join(" ")),
         };
         return Some((np, j + n));
     }
@@ -508,8 +508,13 @@ pub(crate) fn parse_np(
             .iter()
             .map(|t| t.text.clone())
             .collect();
-        if let Some(last) = written.last_mut() {
-            *last = lex.singular(last);
+        // "chests of drawers": the word before "of" is the one in the plural.
+        let counted = match written.iter().position(|w| w == "of") {
+            Some(p) if p > 0 => Some(0),
+            _ => written.len().checked_sub(1),
+        };
+        if let Some(w) = counted.and_then(|i| written.get_mut(i)) {
+            *w = lex.singular(w);
         }
         let canonical = lex
             .objects
@@ -568,6 +573,17 @@ pub(crate) fn parse_np(
         return Some((np, j + 1));
     }
     if lex.is_feature_noun(w) {
+        // "a spinning wheel": a part word that makes a thing WordNet knows with the word
+        // before it is that thing.
+        if j > mods_from
+            && let Some(prev) = word(tokens, j - 1)
+            && let Some(pair) = wordnet_pair(lex, prev, w)
+            && let Ok(head) = ground_words(lex, &[prev, w], true)
+        {
+            np.plural = head.singular != w;
+            np.set_grounded(pair, &head);
+            return Some((np, j + 1));
+        }
         np.head = Head::Feature;
         return Some((np, j + 1));
     }
@@ -591,6 +607,7 @@ pub(crate) fn parse_np(
         let strong = np.number.is_some()
             || np.quant.is_some()
             || np.group.is_some()
+            || np.negated
             || in_list
             || matches!(
                 np.det.as_deref(),
@@ -973,6 +990,10 @@ fn open_head(
             };
         }
         if k > j && lex.is_feature_noun(x) {
+            if wordnet_pair(lex, &tokens[k - 1].text, x).is_some() {
+                k += 1;
+                break;
+            }
             return Open::Feature(k + 1);
         }
         if !compound_word(lex, kb, tokens, k) {
@@ -1027,7 +1048,11 @@ fn open_head(
     let name = &words[name_from..];
     let wn = super::wordnet::wordnet();
     let last = words[words.len() - 1];
-    let bare = np.det.is_none() && np.number.is_none() && np.quant.is_none() && np.group.is_none();
+    let bare = np.det.is_none()
+        && np.number.is_none()
+        && np.quant.is_none()
+        && np.group.is_none()
+        && !np.negated;
     let singular = ground::noun_lemma(last).is_some_and(|l| l == last);
     // "elegant and formal", "adds greenery": a bare word that is also an adjective, or a
     // bare singular outside a list, names no object.
@@ -1068,6 +1093,37 @@ fn open_head(
         }
         Err(reason) => dropped(reason),
     }
+}
+
+/// A room's name as the prompt gives it: the room words with the kind words before them
+/// ("common kitchen", "sleeping loft", "family bakery"): nouns that are no adjective, and
+/// gerunds. Describing adjectives ("spacious", "modern") stay out of the name.
+fn room_name(lex: &Lexicon, tokens: &[Token], from: usize, at: usize, words: String) -> String {
+    let wn = super::wordnet::wordnet();
+    let mut name = words;
+    let mut k = at;
+    while k > from {
+        let Some(w) = word(tokens, k - 1) else { break };
+        let noun = wn.has_pos(w, super::wordnet::Pos::Noun)
+            && !wn.has_pos(w, super::wordnet::Pos::Adj)
+            && lex.material(w).is_none()
+            && lex.color_at(tokens, k - 1).is_none()
+            && lex.size_adjective(w).is_none()
+            && lex.style_at(tokens, k - 1).is_none();
+        let gerund = w.ends_with("ing") && !wn.base_forms(w, super::wordnet::Pos::Verb).is_empty();
+        if !(noun || gerund) {
+            break;
+        }
+        name = format!("{w} {name}");
+        k -= 1;
+    }
+    name
+}
+
+/// `first` and the part word `part` as one noun WordNet knows ("spinning wheel"), singular.
+fn wordnet_pair(lex: &Lexicon, first: &str, part: &str) -> Option<String> {
+    let pair = format!("{first} {}", lex.singular(part));
+    ground::noun_lemma(&pair).filter(|l| *l == pair)
 }
 
 /// The room type a room named after an object belongs to ("kiln room": where kilns are):
@@ -1237,13 +1293,11 @@ fn name_of(lex: &Lexicon, tokens: &[Token], from: usize, at: usize, noun: &str) 
         let longer = format!("{w} {name}");
         let known_compound = ground::noun_lemma(&longer).is_some_and(|l| l == longer)
             || lex.entry_index(&longer).is_some();
-        let kind_word = wn.has_pos(w, super::wordnet::Pos::Noun)
-            && !wn.has_pos(w, super::wordnet::Pos::Adj)
-            && lex.material(w).is_none()
-            && lex.color_at(tokens, k - 1).is_none()
-            && lex.size_adjective(w).is_none()
-            && !w.contains('-');
-        if !(known_compound || kind_word) {
+        // Every modifier of the noun stays in its name ("potted plant", "conical flask",
+        // "terracotta pot", "mini fridge"), except an adverb: a name read this way still ends
+        // with the noun, so it meets a label of the noun alone.
+        let describing = !(w.ends_with("ly") && wn.has_pos(w, super::wordnet::Pos::Adv));
+        if !(known_compound || describing) {
             break;
         }
         name = longer;

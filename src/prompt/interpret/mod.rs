@@ -489,14 +489,18 @@ impl<'a> Interp<'a> {
             Head::Room { .. } => {
                 // "a meeting room with a long table", "three guest rooms, each with a bed",
                 // "there is a breakfast room ...": a room whose contents follow.
+                // "... leads up to the sleeping loft, which holds a bed": so does a relative
+                // clause.
                 let contents_follow = match chunks.get(k + 1).map(|x| &x.item) {
-                    Some(Item::With) => true,
-                    Some(Item::Comma) => {
-                        matches!(chunks.get(k + 2).map(|x| &x.item), Some(Item::Each))
-                    }
+                    Some(Item::With | Item::Relative) => true,
+                    Some(Item::Comma) => matches!(
+                        chunks.get(k + 2).map(|x| &x.item),
+                        Some(Item::Each | Item::Relative)
+                    ),
                     _ => false,
                 } || self.existential_before(chunk.range.start);
-                self.room_np(c, np, next_is_verb, contents_follow)
+                let verb_follows = next_is_verb || subject_verb_after(chunks, k);
+                self.room_np(c, np, verb_follows, contents_follow)
             }
             Head::Landmark(class) => {
                 let Some(target) = landmark_target(class) else {
@@ -685,6 +689,33 @@ impl<'a> Interp<'a> {
             c.last_prep_obj = None;
         }
     }
+}
+
+/// Whether the phrase at `k` is the subject of a verb after a short insertion: "The boot room
+/// beside it holds ...", "The bakery itself has ...", "the two bedrooms each have ...".
+fn subject_verb_after(chunks: &[Chunk], k: usize) -> bool {
+    let item = |j: usize| chunks.get(j).map(|x| &x.item);
+    let mut j = k + 1;
+    for _ in 0..3 {
+        match item(j) {
+            Some(Item::Verb(..)) => return j > k + 1,
+            Some(Item::Each) => j += 1,
+            Some(Item::Other(w)) if matches!(w.as_str(), "itself" | "themselves" | "alone") => {
+                j += 1
+            }
+            Some(Item::Prep(_)) => match item(j + 1) {
+                Some(Item::Np(np))
+                    if matches!(np.head, Head::Pronoun(_) | Head::Landmark(_))
+                        || np.is_definite() =>
+                {
+                    j += 2
+                }
+                _ => return false,
+            },
+            _ => return false,
+        }
+    }
+    matches!(item(j), Some(Item::Verb(..)))
 }
 
 fn is_plural_count(c: Count) -> bool {
