@@ -403,6 +403,7 @@ pub(crate) fn parse_np(
         && let Some((n, key, words)) = wordnet_room(lex, tokens, j, end)
     {
         np.plural = lex.is_plural(&tokens[j + n - 1].text);
+        let words = room_name(lex, tokens, mods_from, j, words);
         np.head = Head::Room { key, words };
         return Some((np, j + n));
     }
@@ -1254,12 +1255,22 @@ fn wordnet_room(
     {
         return Some((2, r.0, r.1));
     }
-    // "a farmhouse table": a noun after it is the head.
-    if j + 1 < end
-        && word(tokens, j + 1).is_some_and(|x| {
-            ground::is_noun(x) && lex.verb(x).is_none() && !lex.is_function_word(x)
-        })
+    let noun_at = |k: usize| {
+        k < end
+            && word(tokens, k).is_some_and(|x| {
+                ground::is_noun(x) && lex.verb(x).is_none() && !lex.is_function_word(x)
+            })
+    };
+    // "this photographer's darkroom": a noun before a room WordNet knows names that room.
+    if noun_at(j)
+        && let Some(w2) = word(tokens, j + 1).filter(|_| j + 1 < end)
+        && !noun_at(j + 2)
+        && let Some((key, lemma)) = wordnet_room_words(&lex.singular(w2))
     {
+        return Some((2, key, format!("{w} {lemma}")));
+    }
+    // "a farmhouse table": a noun after it is the head.
+    if noun_at(j + 1) {
         return None;
     }
     wordnet_room_words(w).map(|(key, lemma)| (1, key, lemma))

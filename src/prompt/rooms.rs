@@ -172,7 +172,7 @@ fn ordinal_word(n: u32) -> &'static str {
 }
 
 /// Where the room list of a sentence starts: after "with", a possession verb ("includes",
-/// "features", "has", "consists of"), "including", or a colon.
+/// "features", "has", "consists of"), "there is", "including", or a colon.
 fn list_start(tokens: &[Token], chunks: &[Chunk]) -> Option<usize> {
     let word = |i: usize| tokens.get(i).map_or("", |t| t.text.as_str());
     // "divided into", "split into", "made up of": the list starts after the phrase.
@@ -186,8 +186,16 @@ fn list_start(tokens: &[Token], chunks: &[Chunk]) -> Option<usize> {
         )
         .then_some(i + 1)
     });
+    // "Upstairs there is a kitchen with ..., a living room with ... and a bedroom": the list
+    // starts at "there is".
+    let existential = |c: &Chunk| {
+        c.range.start > 0
+            && word(c.range.start - 1) == "there"
+            && matches!(word(c.range.start), "is" | "are")
+    };
     chunks.iter().position(|c| match &c.item {
         Item::With | Item::Including => true,
+        _ if existential(c) => true,
         // "has been turned into": an auxiliary, no possession.
         Item::Verb(class, _) => class == "possess" && word(c.range.end) != "been",
         Item::Comma => tokens.get(c.range.start).is_some_and(|t| t.is_punct(':')),
@@ -763,12 +771,13 @@ fn house_from_list(
 fn add_subject_rooms(lex: &Lexicon, sentences: &[Vec<Chunk>], st: &mut Structure) {
     let list = st.list_sentence;
     // Sentences before the room list describe the building, not its rooms. A second pass,
-    // once the prompt is a house, reads every room phrase as a room of it.
+    // once the prompt is a house, reads every room phrase as a room of it, before the list
+    // too ("The children share a bedroom ... There is also a bathroom ... and a kitchen").
     let rooms_in = |in_house: bool| -> Vec<&Np> {
         sentences
             .iter()
             .enumerate()
-            .filter(|(i, _)| list.is_none_or(|l| *i > l))
+            .filter(|(i, _)| list.is_none_or(|l| *i > l || (in_house && *i < l)))
             .flat_map(|(_, chunks)| introduced_rooms(chunks, in_house))
             .collect()
     };

@@ -594,3 +594,50 @@ fn huge_numbers_saturate() {
     let plans = crate::stages::plan::plan_rooms(&r);
     assert!(plans[0].all_wants().all(|w| w.count <= 120));
 }
+
+/// Names keep the words that make a kind; counts survive a gerund; "of" phrases count by
+/// their first word; "no longer" negates.
+#[test]
+fn names_as_written_and_their_counts() {
+    let r = read(
+        "A library with six long reading tables, a potted plant, conical flasks, a chest of \
+         drawers, a potter's wheel and three styling stations, though there is no longer a car.",
+    );
+    let table = find(&r, "table");
+    assert_eq!(table.noun, "long reading table");
+    assert_eq!(table.count, Count::Exactly(6));
+    assert_eq!(find(&r, "plant").noun, "potted plant");
+    assert_eq!(find(&r, "beaker").noun, "conical flask");
+    let chest = find(&r, "dresser");
+    assert_eq!(
+        (chest.noun.as_str(), chest.count),
+        ("chest of drawers", Count::Exactly(1))
+    );
+    assert_eq!(find(&r, "pottery wheel").noun, "potter wheel");
+    assert_eq!(find(&r, "station").count, Count::Exactly(3));
+    assert!(find(&r, "car").negated);
+}
+
+/// Rooms named after an insertion, by "there is" lists and by relative clauses.
+#[test]
+fn rooms_after_insertions_and_existential_lists() {
+    let r = read(
+        "Upstairs there is a kitchen with a small table, a living room with a sofa, and one \
+         bedroom with a double bed. The boot room beside it holds a bench. A staircase leads \
+         to the reading room, which holds a floor lamp.",
+    );
+    let words: Vec<&str> = r.rooms.iter().map(|x| x.words.as_str()).collect();
+    for w in [
+        "kitchen",
+        "living room",
+        "bedroom",
+        "boot room",
+        "reading room",
+    ] {
+        assert!(words.contains(&w), "{w} in {words:?}");
+    }
+    let room_of = |cat: &str| r.rooms[find(&r, cat).room].words.clone();
+    assert_eq!(room_of("table"), "kitchen");
+    assert_eq!(room_of("bench"), "boot room");
+    assert_eq!(room_of("floor lamp"), "reading room");
+}
