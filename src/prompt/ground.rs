@@ -28,6 +28,7 @@ struct RulesFile {
     room_space_words: Vec<String>,
     room_part_words: Vec<String>,
     min_room_share: f64,
+    depiction_under: Vec<String>,
 }
 
 /// Errors loading the grounding rules.
@@ -57,6 +58,7 @@ pub struct Rules {
     room_part_words: Vec<String>,
     /// Room share from which a word the registry does not know is read as a room.
     pub min_room_share: f64,
+    depiction_under: Vec<SynsetId>,
 }
 
 impl Rules {
@@ -84,6 +86,7 @@ impl Rules {
             room_space_words: f.room_space_words,
             room_part_words: f.room_part_words,
             min_room_share: f.min_room_share,
+            depiction_under: resolve(&f.depiction_under)?,
         })
     }
 
@@ -107,6 +110,12 @@ impl Rules {
     /// A sense that names a placeable physical thing.
     pub fn placeable(&self, s: SynsetId) -> bool {
         self.under_any(s, &self.object_under) && !self.under_any(s, &self.not_object_under)
+    }
+
+    /// A sense that pictures something ("photograph", "painting", "statue", "model"): what
+    /// it is "of" is its subject, not a thing in the room.
+    pub fn depicts(&self, s: SynsetId) -> bool {
+        self.under_any(s, &self.depiction_under)
     }
 
     /// A sense that names a room, a building or a place of business.
@@ -159,6 +168,14 @@ pub fn noun_lemma(words: &str) -> Option<String> {
         return Some(w);
     }
     wn.base_forms(&w, Pos::Noun).into_iter().next()
+}
+
+/// Whether the heaviest placeable sense of `words` pictures something (see
+/// [`Rules::depicts`]).
+pub fn is_depiction(words: &str) -> bool {
+    noun_info(words)
+        .and_then(|i| i.placeable.first().copied())
+        .is_some_and(|s| rules().depicts(s))
 }
 
 /// What WordNet says about the noun `words` (any inflection), if it is a noun.

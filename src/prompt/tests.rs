@@ -641,3 +641,20 @@ fn rooms_after_insertions_and_existential_lists() {
     assert_eq!(room_of("bench"), "boot room");
     assert_eq!(room_of("floor lamp"), "reading room");
 }
+
+/// What a picture is "of" is its subject, not a thing in the room; what a container is "of"
+/// is its contents.
+#[test]
+fn pictures_of_things_hold_no_things() {
+    let r = read(
+        "Six waiting chairs sit beneath framed photographs of classic haircuts, next to a vase \
+         of flowers.",
+    );
+    assert!(
+        r.mentions.iter().all(|m| m.category != "haircut"),
+        "{:?}",
+        r.mentions
+    );
+    assert_eq!(find(&r, "photo").noun, "framed photograph");
+    assert_eq!(find(&r, "flowers").count, Count::Several);
+}

@@ -417,9 +417,15 @@ impl<'a> Interp<'a> {
                     }
                 }
                 Item::Of => {
-                    // "a vase of flowers", "shelves of stuffed animals": contents, for the
-                    // next phrase only.
-                    if let Some(f) = c.focus.first().cloned()
+                    // "photographs of classic haircuts", "a statue of a horse": the subject
+                    // of a picture, for the next phrase only, is a motif, not an object.
+                    if let Some(f) = c.last_np.last().or(c.focus.first()).cloned()
+                        && (super::ground::is_depiction(&self.mentions[f.m].noun)
+                            || super::ground::is_depiction(&self.mentions[f.m].category))
+                    {
+                        self.push_ctx(&mut c, Ctx::StyleOf(vec![f]));
+                        c.of_once = true;
+                    } else if let Some(f) = c.focus.first().cloned()
                         && (self.mentions[f.m].container
                             || self
                                 .lex

@@ -130,6 +130,11 @@ impl Interp<'_> {
         }
         if let Ctx::StyleOf(targets) = c.ctx.clone() {
             self.add_styles(&targets, np);
+            if c.of_once {
+                // "photographs of classic haircuts": one phrase is the subject.
+                c.of_once = false;
+                self.pop_ctx(c);
+            }
             return;
         }
         // The same noun again inside its own holder: "stacks of plates with at least 20
