@@ -209,8 +209,8 @@ fn score_file(path: &str, title: &str, misses_env: &str) -> Score {
 }
 
 /// Fails when a score falls under its floor: the floors sit a few points under the score
-/// measured when they were set (held-out, session of 2026-11-26: objects 82.2 %, absents
-/// 89.1 %, rooms 93.6 %, refused 4/4; dev long, 102 prompts: 89.9 %, 97.4 %, 95.9 %, 4/4).
+/// measured when they were set (held-out, session of 2026-11-26: objects 82.4 %, absents
+/// 89.1 %, rooms 93.6 %, refused 4/4; dev long, 102 prompts: 90.2 %, 97.4 %, 95.9 %, 4/4).
 fn assert_floors(s: &Score, objects: f64, absent: f64, rooms: f64) {
     let o = pct(s.objects_met, s.objects);
     let a = pct(s.absent_met, s.absent);

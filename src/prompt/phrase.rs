@@ -781,14 +781,19 @@ fn ground_words(lex: &Lexicon, words: &[&str], strong: bool) -> Result<Grounded,
         }
         Verdict::NotObject(why) => return Err(why),
     }
-    let lemma = ground::noun_lemma(&compound).unwrap_or_else(|| compound.clone());
+    Ok(grounded(lex, &compound, last))
+}
+
+/// The grounding of `compound` (head `last`), a noun WordNet reads as a thing.
+fn grounded(lex: &Lexicon, compound: &str, last: &str) -> Grounded {
+    let lemma = ground::noun_lemma(compound).unwrap_or_else(|| compound.to_string());
     let singular = ground::noun_lemma(last).unwrap_or_else(|| lex.singular(last));
-    let family = ground::family(&compound, &|n: &str| lex.lookup(n).is_some());
+    let family = ground::family(compound, &|n: &str| lex.lookup(n).is_some());
     let family_entry = family
         .as_ref()
         .and_then(|f| lex.lookup(&f.noun))
         .and_then(|e| lex.entry_index(&e.noun));
-    Ok(Grounded {
+    Grounded {
         singular,
         lemma,
         family: family
@@ -798,7 +803,7 @@ fn ground_words(lex: &Lexicon, words: &[&str], strong: bool) -> Result<Grounded,
         family_entry,
         via: family.map(|f| f.via).unwrap_or_default(),
         unknown: false,
-    })
+    }
 }
 
 /// A noun that a room word before it modifies ("sofa" in "living room sofa"): a noun of the
@@ -892,12 +897,16 @@ fn compound_tail(
         return None;
     }
     let after = tokens.get(at + len);
+    // "a bench vice bolted to ...": a participle after it ends the phrase too.
+    let participle =
+        |x: &str| x.ends_with("ed") && !wn.base_forms(x, super::wordnet::Pos::Verb).is_empty();
     let ends = after.is_none_or(|t| {
         !t.is_word()
             || lex.is_function_word(&t.text)
             || lex.landmark(&t.text).is_some()
             || lex.preposition_at(tokens, at + len).is_some()
             || lex.verb(&t.text).is_some()
+            || participle(&t.text)
     });
     if !ends {
         return None;
@@ -910,13 +919,33 @@ fn compound_tail(
     // ("pit") still names the thing. A compound WordNet knows grounds as a whole.
     if len == 1 && wn_compound(at) {
         let whole = [tokens[at - 1].text.as_str(), words[0]];
-        // Without a family it would be a stand-in: the known noun builds it better.
-        return ground_words(lex, &whole, true)
-            .ok()
-            .filter(|g| g.family.is_some())
-            .map(|g| (len, g));
+        // Without a family it would be a stand-in: the known noun builds it better, under
+        // the compound's name ("drill press" built as a drill).
+        let known = lex
+            .entry_index(&tokens[at - 1].text)
+            .or_else(|| lex.entry_index(&lex.singular(&tokens[at - 1].text)));
+        return ground_words(lex, &whole, true).ok().and_then(|mut g| {
+            if g.family.is_none() {
+                let entry = known?;
+                g.family = lex.objects.get(entry).map(|e| e.noun.clone());
+                g.family_entry = Some(entry);
+                g.via = vec![g.lemma.clone(), tokens[at - 1].text.clone()];
+            }
+            Some((len, g))
+        });
     }
-    ground_words(lex, &words, true).ok().map(|g| (len, g))
+    // "a bench vice", "a bench grinder": after a known noun, a noun with any physical sense
+    // names that thing.
+    ground_words(lex, &words, true)
+        .ok()
+        .or_else(|| {
+            let last = *words.last()?;
+            let info = ground::noun_info(last)?;
+            // Not a word that is as often a verb ("a table set for four").
+            let plain = lex.verb(last).is_none() && !lex.is_ambiguous_bare(last);
+            (len == 1 && plain && !info.placeable.is_empty()).then(|| grounded(lex, last, last))
+        })
+        .map(|g| (len, g))
 }
 
 /// What an open-vocabulary phrase turned out to be.

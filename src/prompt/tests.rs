@@ -616,6 +616,11 @@ fn names_as_written_and_their_counts() {
     assert_eq!(find(&r, "pottery wheel").noun, "potter wheel");
     assert_eq!(find(&r, "station").count, Count::Exactly(3));
     assert!(find(&r, "car").negated);
+    // A compound WordNet knows after a lexicon noun, with no family of its own, is built as
+    // that noun under its own name.
+    let r = read("A garage with a drill press and a table set for four people.");
+    assert_eq!(find(&r, "drill press").head.as_deref(), Some("drill"));
+    assert_eq!(find(&r, "table").place_settings, Some(4));
 }
 
 /// Rooms named after an insertion, by "there is" lists and by relative clauses.
