@@ -1320,9 +1320,8 @@ fn wordnet_room_words(w: &str) -> Option<(String, String)> {
     Some((key, info.lemma))
 }
 
-/// The object's name as the prompt gives it: the noun with the words before it that make it
-/// a kind ("manicure table", "sofa chair", "grand piano" — a compound WordNet knows), not
-/// its adjectives, colours or materials ("walnut desk" is a desk). `from` is where the
+/// The object's name as the prompt gives it: the noun with the modifiers before it, up to
+/// the first adverb ("potted plant", "walnut desk", "grand piano"). `from` is where the
 /// modifiers start, `at` where the noun starts.
 fn name_of(lex: &Lexicon, tokens: &[Token], from: usize, at: usize, noun: &str) -> String {
     let wn = super::wordnet::wordnet();
