@@ -103,6 +103,28 @@ fn bins_the_prompt_puts_on_the_floor_are_floor_bins() {
 }
 
 #[test]
+fn a_thing_named_with_its_modifiers_is_placed_as_often_as_asked() {
+    use scenesmith::stages::StageState;
+    // The object keeps the prompt's name ("spattered_radio"); the plan calls it a radio.
+    assert!(StageState::names("radio", "spattered_radio"));
+    assert!(!StageState::names("radio", "radiogram"));
+    assert!(!StageState::names("table", "side_table"));
+    let prompt = "A pottery studio with a worktable and a squat kiln. A paint-spattered radio \
+                  rests on the worktable.";
+    let (state, _) = build_scene(prompt, 4, "named_once", &Backend::Builtin).unwrap();
+    let count = |noun: &str| {
+        state
+            .scene
+            .objects
+            .iter()
+            .filter(|o| o.category.ends_with(noun))
+            .count()
+    };
+    assert_eq!(count("radio"), 1, "one radio was asked for");
+    assert_eq!(count("kiln"), 1, "one kiln was asked for");
+}
+
+#[test]
 fn a_pile_of_plates_lies_in_short_stacks() {
     let prompt = "A dining room with a table and a pile of 6 plates on the table.";
     let (state, _) = build_scene(prompt, 2, "plate_pile", &Backend::Builtin).unwrap();

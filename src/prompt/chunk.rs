@@ -114,6 +114,23 @@ pub(crate) fn chunk_sentence(
                 ))
             || matches!(out.last().map(|c| &c.item), Some(Item::Verb(class, _)) if matches!(class.as_str(), "possess" | "display" | "fill_with"));
         // Fixed phrases first.
+        // "as if its owner spends every night chasing comets", "though the owner wishes there
+        // were": a clause about what is imagined or wished names nothing in the room; it runs
+        // to the next comma or semicolon.
+        let imagined = (w == "as" && matches!(next, Some("if" | "though")))
+            || (matches!(
+                w,
+                "wishes" | "wish" | "wished" | "imagine" | "imagines" | "dreams"
+            ) && matches!(next, Some("there" | "that" | "for" | "of" | "it" | "they")));
+        if imagined {
+            let mut k = i + 1;
+            while k < end && !matches!(tokens[k].kind, TokenKind::Punct(',' | ';' | ':')) {
+                k += 1;
+            }
+            push(&mut out, Item::Other(w.to_string()), k - i);
+            i = k;
+            continue;
+        }
         if w == "in" && next == Some("total") {
             push(&mut out, Item::InTotal, 2);
             i += 2;

@@ -154,6 +154,9 @@ pub struct NounInfo {
     pub room_share: f64,
     /// Lexicographer file of the heaviest sense ("noun.feeling").
     pub lexname: String,
+    /// Whether a physical sense is excluded as larger than a room or as the architecture
+    /// itself (a building, a ship, a floor).
+    pub structure: bool,
 }
 
 /// The WordNet noun lemma of a word or multiword phrase ("shelves" -> "shelf"), if it is a
@@ -193,12 +196,15 @@ pub fn noun_info(words: &str) -> Option<NounInfo> {
     let mut roomlike = false;
     let mut roomed = 0.0;
     let mut heaviest: Option<(f64, SynsetId)> = None;
+    let mut structure = false;
     for (rank, s) in senses.iter().enumerate() {
         let w = f64::from(s.count) + r.count_smoothing;
         total += w;
         if r.placeable(s.synset) {
             placed += w;
             placeable.push((w, rank, s.synset));
+        } else if r.under_any(s.synset, &r.object_under) {
+            structure = true;
         }
         if r.roomlike(s.synset) {
             roomlike = true;
@@ -216,6 +222,7 @@ pub fn noun_info(words: &str) -> Option<NounInfo> {
         roomlike,
         room_share: if total > 0.0 { roomed / total } else { 0.0 },
         lexname: heaviest.map_or_else(String::new, |(_, s)| wn.lexname(s).to_string()),
+        structure,
     })
 }
 
@@ -272,16 +279,27 @@ pub fn verdict(words: &str) -> Verdict {
         },
         Some(info) if info.share >= r.min_share => Verdict::Object,
         Some(info) if info.share >= r.min_share_with_evidence => Verdict::NeedsEvidence,
+        Some(info) if info.placeable.is_empty() && info.structure => Verdict::NotObject(
+            "a building, vessel or structure, or part of the architecture: nothing placed in \
+             a room"
+                .to_string(),
+        ),
         Some(info) if info.placeable.is_empty() => Verdict::NotObject(format!(
-            "a {} word, no physical thing",
-            info.lexname.trim_start_matches("noun.")
+            "{} word, no physical thing",
+            with_article(info.lexname.trim_start_matches("noun."))
         )),
         Some(info) => Verdict::NotObject(format!(
-            "mostly a {} word ({:.0} % of its uses name a thing)",
-            info.lexname.trim_start_matches("noun."),
+            "mostly {} word ({:.0} % of its uses name a thing)",
+            with_article(info.lexname.trim_start_matches("noun.")),
             100.0 * info.share
         )),
     }
+}
+
+/// "an event", "a feeling".
+fn with_article(word: &str) -> String {
+    let vowel = word.starts_with(['a', 'e', 'i', 'o', 'u']);
+    format!("{} {word}", if vowel { "an" } else { "a" })
 }
 
 /// The nearest family of a noun along its hypernyms.

@@ -81,6 +81,8 @@ struct WordsFile {
     verbs: HashMap<String, String>,
     ambiguous_bare: Vec<String>,
     relatives: Vec<String>,
+    /// Pronouns, subordinators, auxiliaries and sentence adverbs: English's closed classes.
+    closed_class: Vec<String>,
     conjunctions: Vec<String>,
     setting_nouns: Vec<String>,
     part_nouns: HashMap<String, String>,
@@ -143,6 +145,7 @@ pub struct Lexicon {
     verbs: HashMap<String, String>,
     ambiguous_bare: HashSet<String>,
     relatives: HashSet<String>,
+    closed_class: HashSet<String>,
     conjunctions: HashSet<String>,
     setting_nouns: HashSet<String>,
     part_nouns: HashMap<String, String>,
@@ -212,6 +215,7 @@ impl Lexicon {
             verbs: w.verbs,
             ambiguous_bare: set(w.ambiguous_bare),
             relatives: set(w.relatives),
+            closed_class: set(w.closed_class),
             conjunctions: set(w.conjunctions),
             setting_nouns: set(w.setting_nouns),
             part_nouns: w.part_nouns,
@@ -254,7 +258,7 @@ impl Lexicon {
 
     /// True for nouns that only exist in the plural ("scissors", "jeans").
     pub fn plurale_tantum(&self, word: &str) -> bool {
-        self.irregular.get(word).is_some_and(|s| s == word)
+        self.irregular.get(word).is_some_and(|s| s == word) || wordnet_plurale_tantum(word)
     }
 
     /// The entry a spelling names.
@@ -520,6 +524,7 @@ impl Lexicon {
             || self.prepositions.contains_key(word)
             || self.verbs.contains_key(word)
             || self.relatives.contains(word)
+            || self.closed_class.contains(word)
             || self.conjunctions.contains(word)
             || self.negations.contains(word)
             || matches!(
@@ -552,6 +557,15 @@ impl Lexicon {
                     | "or"
             )
     }
+}
+
+/// A thing WordNet names in the plural ("shears", "secateurs", "goggles", "tongs",
+/// "glasses"): the plural is its own lemma with a physical sense, so "a pair of" it is one.
+fn wordnet_plurale_tantum(word: &str) -> bool {
+    word.ends_with('s')
+        && super::wordnet::wordnet().is_lemma(word, super::wordnet::Pos::Noun)
+        && super::ground::noun_info(word)
+            .is_some_and(|i| i.lemma == word && !i.placeable.is_empty())
 }
 
 #[derive(Debug, Deserialize)]

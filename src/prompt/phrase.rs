@@ -386,7 +386,15 @@ pub(crate) fn parse_np(
     let room = kb.room_type_at(tokens, j).filter(|(n, _)| j + n <= end);
     let noun_len = noun.map_or(0, |(n, ..)| n);
     let room_len = room.map_or(0, |(n, _)| n);
-    let bare_ambiguous = noun_len == 1 && lex.is_ambiguous_bare(w) && !evidence && !in_list;
+    // "this home is compact": a bare word after a linking verb that WordNet also reads as an
+    // adjective is the predicate, not a thing.
+    let predicate = j == i
+        && i > sentence_start
+        && word(tokens, i - 1).is_some_and(is_linking_verb)
+        && !lex.is_plural(w)
+        && super::wordnet::wordnet().has_pos(w, super::wordnet::Pos::Adj);
+    let bare_ambiguous =
+        noun_len == 1 && (lex.is_ambiguous_bare(w) || predicate) && !evidence && !in_list;
     // "a kiln room", "a boot room": nouns before a room word name the room.
     if room_len == 0
         && let Some((n, key, words)) = room_compound(lex, kb, tokens, j, end)
@@ -911,6 +919,16 @@ fn compound_tail(
     if !ends {
         return None;
     }
+    // "Shelves above the desk display a meteorite": a word the verb table knows, followed by
+    // the start of another noun phrase, is the verb.
+    let starts_phrase = after.is_some_and(|t| {
+        lex.determiner(&t.text).is_some()
+            || lex.number(t).is_some()
+            || lex.quantifier_at(tokens, at + len).is_some()
+    });
+    if starts_phrase && lex.verb(&tokens[at + len - 1].text).is_some() {
+        return None;
+    }
     let words: Vec<&str> = tokens[at..at + len]
         .iter()
         .map(|t| t.text.as_str())
@@ -1024,6 +1042,14 @@ fn open_head(
                 k += 1;
                 break;
             }
+            return Open::Feature(k + 1);
+        }
+        // "its checkerboard floor", "a chalkboard wall": nouns before a part of the building
+        // describe it.
+        if k > j
+            && lex.is_non_object(x)
+            && ground::noun_info(x).is_some_and(|i| i.structure && i.share < 0.5)
+        {
             return Open::Feature(k + 1);
         }
         if !compound_word(lex, kb, tokens, k) {
@@ -1303,6 +1329,24 @@ fn wordnet_room(
         return None;
     }
     wordnet_room_words(w).map(|(key, lemma)| (1, key, lemma))
+}
+
+/// A verb that links its subject to a description ("is", "seems", "feels").
+fn is_linking_verb(w: &str) -> bool {
+    matches!(
+        w,
+        "is" | "are"
+            | "was"
+            | "were"
+            | "be"
+            | "seems"
+            | "seem"
+            | "looks"
+            | "feels"
+            | "remains"
+            | "becomes"
+            | "stays"
+    )
 }
 
 /// (type, lemma) of words WordNet knows as a room and rarely as a thing.

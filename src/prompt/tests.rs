@@ -663,3 +663,60 @@ fn pictures_of_things_hold_no_things() {
     assert_eq!(find(&r, "photo").noun, "framed photograph");
     assert_eq!(find(&r, "flowers").count, Count::Several);
 }
+
+#[test]
+fn only_things_in_the_room_become_objects() {
+    let nouns = |p: &str| -> Vec<String> {
+        read(p)
+            .mentions
+            .iter()
+            .filter(|m| !m.negated)
+            .map(|m| m.noun.clone())
+            .collect()
+    };
+    // Closed-class words are never stand-ins, even where a list would make one.
+    let n = nouns("There is no fridge and no TV, since the refuge has no electricity.");
+    assert!(n.is_empty(), "{n:?}");
+    let n = nouns("The room is serene, its beauty lying in what has been left out.");
+    assert!(n.is_empty(), "{n:?}");
+    // What is imagined or wished is not in the room.
+    let n = nouns(
+        "This observatory has a quiet air, as if its owner spends every night chasing comets. \
+         A desk stands by the wall. There is no bed, though the owner wishes there were a sofa.",
+    );
+    assert_eq!(n, vec!["desk".to_string()]);
+    // Buildings and ships hold rooms; they are not placed in one.
+    let r = read("This private observatory has a telescope and a desk.");
+    assert_eq!(r.rooms[0].words, "observatory");
+    assert!(r.mentions.iter().all(|m| m.noun != "observatory"));
+    let n = nouns("Moored on a canal, this narrowboat home is compact. It has a bed.");
+    assert_eq!(
+        n,
+        vec!["bed".to_string()],
+        "a predicate adjective is no makeup compact"
+    );
+    // A noun before a part of the building describes it.
+    let n = nouns("With its checkerboard floor, this barber shop has a chair.");
+    assert_eq!(n, vec!["chair".to_string()]);
+    // A verb the table knows, before a determiner, is the verb ("display a meteorite").
+    let r = read("Shelves above the desk display a meteorite and a lamp.");
+    assert!(r.mentions.iter().all(|m| !m.noun.contains("display")));
+    assert_eq!(find(&r, "desk").count, Count::Exactly(1));
+}
+
+#[test]
+fn a_pair_of_a_plural_thing_is_one() {
+    let r =
+        read("A pair of heavy shears, a pair of secateurs and two pairs of shoes lie on a desk.");
+    assert_eq!(find(&r, "scissors").count, Count::Exactly(1));
+    assert_eq!(find(&r, "shoe").count, Count::Exactly(4));
+    let r = read("A bench holds a pair of bamboo tongs and a pair of safety goggles.");
+    assert!(
+        r.mentions
+            .iter()
+            .filter(|m| m.category != "bench")
+            .all(|m| m.count == Count::Exactly(1)),
+        "{:?}",
+        r.mentions
+    );
+}

@@ -276,7 +276,18 @@ impl StageState {
     /// True when an object of `category` is what `noun` asks for: a category the router can
     /// build for it (at any stage), or the generic stand-in named after an unknown noun.
     pub fn names(noun: &str, category: &str) -> bool {
-        if category == noun || category == crate::scene::sanitize_name(noun) {
+        let sanitized = crate::scene::sanitize_name(noun);
+        if category == noun || category == sanitized {
+            return true;
+        }
+        // A prompt's name keeps the noun's modifiers and ends with the noun
+        // ("spattered_radio" for a "paint-spattered radio" the plan calls a radio).
+        if procedural::prior(category).is_none()
+            && !sanitized.is_empty()
+            && category
+                .strip_suffix(sanitized.as_str())
+                .is_some_and(|rest| rest.ends_with('_'))
+        {
             return true;
         }
         let main = router::parse::main_categories(noun);

@@ -445,8 +445,11 @@ impl Interp<'_> {
         );
         if np.group == Some(GroupKind::Pair) {
             let pairs = np.number.unwrap_or(1);
-            let tantum =
-                noun.is_some_and(|n| self.lex.plurale_tantum(n.rsplit(' ').next().unwrap_or(n)));
+            // "heavy shears" reaches here singularised as "heavy shear".
+            let tantum = noun.is_some_and(|n| {
+                let last = n.rsplit(' ').next().unwrap_or(n);
+                self.lex.plurale_tantum(last) || self.lex.plurale_tantum(&format!("{last}s"))
+            });
             let n = if tantum {
                 pairs
             } else {
