@@ -29,6 +29,7 @@ struct RulesFile {
     room_part_words: Vec<String>,
     min_room_share: f64,
     depiction_under: Vec<String>,
+    building_under: Vec<String>,
 }
 
 /// Errors loading the grounding rules.
@@ -59,6 +60,7 @@ pub struct Rules {
     /// Room share from which a word the registry does not know is read as a room.
     pub min_room_share: f64,
     depiction_under: Vec<SynsetId>,
+    building_under: Vec<SynsetId>,
 }
 
 impl Rules {
@@ -87,6 +89,7 @@ impl Rules {
             room_part_words: f.room_part_words,
             min_room_share: f.min_room_share,
             depiction_under: resolve(&f.depiction_under)?,
+            building_under: resolve(&f.building_under)?,
         })
     }
 
@@ -137,6 +140,24 @@ pub fn rules() -> &'static Rules {
             }
         },
     )
+}
+
+/// Whether every room-like or physical sense of `words` is a whole building or ship ("hostel",
+/// "fire station", "narrowboat"), not a room in one.
+pub fn is_building(words: &str) -> bool {
+    let wn = wordnet();
+    let r = rules();
+    let last = words.rsplit(' ').next().unwrap_or(words);
+    let Some(lemma) = noun_lemma(words).or_else(|| noun_lemma(last)) else {
+        return false;
+    };
+    let senses: Vec<SynsetId> = wn
+        .noun_senses(&lemma)
+        .iter()
+        .map(|s| s.synset)
+        .filter(|&s| r.roomlike(s) || r.under_any(s, &r.object_under))
+        .collect();
+    !senses.is_empty() && senses.iter().all(|&s| r.under_any(s, &r.building_under))
 }
 
 /// What WordNet says about a noun.

@@ -447,6 +447,13 @@ pub(crate) fn parse_np(
         };
         return Some((np, j + n));
     }
+    if let Some((n, ..)) = noun
+        && j > mods_from
+        && names_building(lex, tokens, j, n)
+    {
+        np.head = Head::NonObject;
+        return Some((np, j + n));
+    }
     if let Some((n, entry, plural)) = noun
         && !bare_ambiguous
     {
@@ -623,6 +630,10 @@ pub(crate) fn parse_np(
                 Some("indefinite" | "each" | "another" | "several")
             );
         match open_head(lex, kb, tokens, j, end, &np, strong, in_list) {
+            Open::Lexicon { before, n2, .. } if names_building(lex, tokens, before, n2) => {
+                np.head = Head::NonObject;
+                return Some((np, before + n2));
+            }
             Open::Lexicon {
                 before,
                 n2,
@@ -1276,9 +1287,10 @@ fn room_compound(
             if let Some(l) = written.last_mut() {
                 *l = lex.singular(l);
             }
-            // "a foam block" names no room: the thing must be one some room type holds.
+            // "a foam block" names no room: the thing must be one some room type holds, or
+            // the part word must rarely be a thing itself ("an engine bay").
             let key = type_for_object(lex, &lex.singular(&tokens[j + m - 1].text));
-            if key == "room" {
+            if key == "room" && ground::verdict(&lex.singular(part)) == Verdict::Object {
                 return None;
             }
             return Some((m + 1, key, written.join(" ")));
@@ -1329,6 +1341,19 @@ fn wordnet_room(
         return None;
     }
     wordnet_room_words(w).map(|(key, lemma)| (1, key, lemma))
+}
+
+/// "this small rural fire station": the word before the lexicon noun at `at` (`n` words) makes
+/// it a WordNet building; it holds the rooms, it is not in one.
+fn names_building(lex: &Lexicon, tokens: &[Token], at: usize, n: usize) -> bool {
+    let (Some(prev), Some(last)) = (
+        at.checked_sub(1).and_then(|p| word(tokens, p)),
+        word(tokens, at + n - 1),
+    ) else {
+        return false;
+    };
+    let compound = format!("{prev} {}", lex.singular(last));
+    ground::noun_lemma(&compound).is_some() && ground::is_building(&compound)
 }
 
 /// A verb that links its subject to a description ("is", "seems", "feels").

@@ -773,12 +773,22 @@ fn add_subject_rooms(lex: &Lexicon, sentences: &[Vec<Chunk>], st: &mut Structure
     // Sentences before the room list describe the building, not its rooms. A second pass,
     // once the prompt is a house, reads every room phrase as a room of it, before the list
     // too ("The children share a bedroom ... There is also a bathroom ... and a kitchen").
+    // There, a building ("This backpacker hostel has ...") is the house itself.
     let rooms_in = |in_house: bool| -> Vec<&Np> {
         sentences
             .iter()
             .enumerate()
             .filter(|(i, _)| list.is_none_or(|l| *i > l || (in_house && *i < l)))
-            .flat_map(|(_, chunks)| introduced_rooms(chunks, in_house))
+            .flat_map(|(i, chunks)| {
+                introduced_rooms(chunks, in_house)
+                    .into_iter()
+                    .filter(move |np| {
+                        let before_list = list.is_some_and(|l| i < l);
+                        !(before_list
+                            && matches!(&np.head, Head::Room { key, words }
+                                if key == "room" && super::ground::is_building(words)))
+                    })
+            })
             .collect()
     };
     let mut added = add_rooms(lex, &rooms_in(false), st);

@@ -720,3 +720,29 @@ fn a_pair_of_a_plural_thing_is_one() {
         r.mentions
     );
 }
+
+#[test]
+fn a_building_holds_the_rooms_it_lists() {
+    let r = read(
+        "This backpacker hostel has a relaxed buzz. It comprises a reception, a common kitchen, \
+         a lounge and three dormitories. The reception has a desk.",
+    );
+    let names: Vec<&str> = r.rooms.iter().map(|x| x.words.as_str()).collect();
+    assert_eq!(r.rooms.len(), 6, "{names:?}");
+    assert!(!names.iter().any(|n| n.contains("hostel")), "{names:?}");
+    let r = read(
+        "This small rural fire station is a little worn. It includes an engine bay, a kitchen \
+         and a dormitory. The engine bay houses two fire engines.",
+    );
+    let names: Vec<&str> = r.rooms.iter().map(|x| x.words.as_str()).collect();
+    assert_eq!(names, vec!["engine bay", "kitchen", "dormitory"]);
+    assert!(
+        r.mentions.iter().all(|m| !m.noun.contains("station")),
+        "{:?}",
+        r.mentions
+    );
+    assert_eq!(
+        r.mentions[0].room, 0,
+        "the fire engines are the engine bay's"
+    );
+}

@@ -436,6 +436,8 @@ impl<'a> Interp<'a> {
                         c.of_once = true;
                     }
                 }
+                // "There is no sofa; instead, two armchairs": what follows is there.
+                Item::Other(w) if w == "instead" => c.negate = false,
                 Item::Other(_) => {}
             }
             k += 1;

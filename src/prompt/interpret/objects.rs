@@ -291,6 +291,10 @@ impl Interp<'_> {
             rel.instance = inst;
             self.add_relation(r.m, rel);
         }
+        // "There is no television, only a pair of speakers": "only" ends the negation.
+        if c.negate && !np.negated && np.quant.as_deref() == Some("exactly") {
+            c.negate = false;
+        }
         if c.negate || np.negated {
             self.mentions[r.m].negated = true;
         }
