@@ -109,8 +109,8 @@ fn a_thing_named_with_its_modifiers_is_placed_as_often_as_asked() {
     assert!(StageState::names("radio", "spattered_radio"));
     assert!(!StageState::names("radio", "radiogram"));
     assert!(!StageState::names("table", "side_table"));
-    let prompt = "A pottery studio with a worktable and a squat kiln. A paint-spattered radio \
-                  rests on the worktable.";
+    let prompt = "A pottery studio with a long wedging table and a squat kiln. A \
+                  paint-spattered radio rests on the wedging table.";
     let (state, _) = build_scene(prompt, 4, "named_once", &Backend::Builtin).unwrap();
     let count = |noun: &str| {
         state
@@ -122,6 +122,19 @@ fn a_thing_named_with_its_modifiers_is_placed_as_often_as_asked() {
     };
     assert_eq!(count("radio"), 1, "one radio was asked for");
     assert_eq!(count("kiln"), 1, "one kiln was asked for");
+    // The table is built as the library's table and keeps the prompt's name, which a
+    // requirement for a "wedging table" reads.
+    let table = state
+        .scene
+        .objects
+        .iter()
+        .find(|o| o.category == "table")
+        .expect("a table");
+    assert_eq!(table.name.as_deref(), Some("long wedging table"));
+    assert!(scenesmith::eval::requirements::object_matches(
+        "wedging table",
+        table
+    ));
 }
 
 #[test]

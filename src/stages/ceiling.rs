@@ -122,15 +122,11 @@ fn try_hang(
         }
     }
     let room_id = state.room.clone();
-    Ok(state.scene.add_object(
-        &routed.category,
+    Ok(state.add_routed(
+        routed,
         ObjectKind::Ceiling,
-        &room_id,
-        &routed.asset,
         pose,
-        Support::Ceiling {
-            room: room_id.clone(),
-        },
+        Support::Ceiling { room: room_id },
     ))
 }
 

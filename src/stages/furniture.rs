@@ -187,16 +187,8 @@ pub fn try_place(
             routed.category
         )));
     }
-    Ok(state.scene.add_object(
-        &routed.category,
-        ObjectKind::Furniture,
-        &state.room.clone(),
-        &routed.asset,
-        pose,
-        Support::Floor {
-            room: state.room.clone(),
-        },
-    ))
+    let room = state.room.clone();
+    Ok(state.add_routed(routed, ObjectKind::Furniture, pose, Support::Floor { room }))
 }
 
 fn result_for(

@@ -294,12 +294,9 @@ fn add_item(
     parent: &str,
     surface: &str,
 ) -> String {
-    let room = state.room.clone();
-    state.scene.add_object(
-        &routed.category,
+    state.add_routed(
+        routed,
         ObjectKind::Manipuland,
-        &room,
-        &routed.asset,
         pose,
         Support::Object {
             parent: parent.to_string(),

@@ -246,6 +246,23 @@ pub struct RoutedAsset {
     /// parts of a composite to place next, parts for a later stage.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub notes: Vec<String>,
+    /// The description's own name for the object when it says more than the category
+    /// ("long wedging table" built as a `table`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+}
+
+/// A short description that is a name ("long wedging table", "paint-spattered radio") and
+/// says more than `category`; not a sentence an LLM designer wrote.
+fn object_name(description: &str, category: &str) -> Option<String> {
+    let text = description.trim().to_lowercase();
+    let words: Vec<&str> = text.split_whitespace().collect();
+    let plain = words.iter().all(|w| {
+        w.chars()
+            .all(|c| c.is_alphabetic() || c == '-' || c == '\'')
+    });
+    let differs = crate::scene::sanitize_name(&text) != category;
+    (plain && differs && (2..=5).contains(&words.len())).then(|| words.join(" "))
 }
 
 /// The state a placement stage's tools work on: the scene, the room (and supporting entity)
@@ -404,10 +421,37 @@ impl StageState {
         let [lo, hi] = self.scene.scene.assets[&id].bounds;
         Ok(RoutedAsset {
             asset: id,
+            name: object_name(description, &category),
             category,
             size: [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]],
             notes,
         })
+    }
+
+    /// Adds an object of the routed asset to the room in focus, under the description's
+    /// name; returns its id.
+    pub fn add_routed(
+        &mut self,
+        routed: &RoutedAsset,
+        kind: ObjectKind,
+        pose: Pose,
+        support: Support,
+    ) -> String {
+        let room = self.room.clone();
+        let id = self
+            .scene
+            .add_object(&routed.category, kind, &room, &routed.asset, pose, support);
+        if let Some(o) = self
+            .scene
+            .scene
+            .objects
+            .iter_mut()
+            .rev()
+            .find(|o| o.id == id)
+        {
+            o.name = routed.name.clone();
+        }
+        id
     }
 
     /// The room in focus.

@@ -197,12 +197,9 @@ fn try_mount(
             Some((who, _)) => reason = format!("it would overlap {who}"),
             None => {
                 let pose = wall_pose(wall, &rec, x, z);
-                let room_id = state.room.clone();
-                return Ok(state.scene.add_object(
-                    &routed.category,
+                return Ok(state.add_routed(
+                    routed,
                     ObjectKind::Wall,
-                    &room_id,
-                    &routed.asset,
                     pose,
                     Support::Wall {
                         wall: wall.id.clone(),
