@@ -5,7 +5,6 @@
 
 pub mod ceiling;
 pub mod checkpoint;
-pub mod clutter;
 pub mod common;
 pub mod furniture;
 pub mod furniture_builtin;
