@@ -211,18 +211,13 @@ fn every_entry_is_well_formed() {
                     format!("surface parent {} not in the room", rule.parent),
                 );
             }
-            if rule.count[0] > rule.count[1] || rule.items.is_empty() {
+            if rule.count[0] > rule.count[1] || (rule.items.is_empty() && rule.inside.is_empty()) {
                 p(
                     &mut problems,
                     format!("surface rule {} count {:?}", rule.parent, rule.count),
                 );
             }
-            if let Some([a, b]) = rule.fill
-                && !(0.0 <= a && a <= b && b <= 1.0)
-            {
-                p(&mut problems, format!("fill {a}..{b}"));
-            }
-            for it in &rule.items {
+            for it in rule.items.iter().chain(&rule.inside) {
                 if !known(it) {
                     p(&mut problems, format!("unknown surface item {it}"));
                 } else if lex.lookup(it).map(|e| e.support) == Some(Support::Floor) {
@@ -250,7 +245,10 @@ fn every_entry_is_well_formed() {
         }
     }
     for rule in kb.surface_rules() {
-        for n in std::iter::once(&rule.parent).chain(&rule.items) {
+        for n in std::iter::once(&rule.parent)
+            .chain(&rule.items)
+            .chain(&rule.inside)
+        {
             if !known(n) {
                 problems.push(format!("surface rule noun {n}"));
             }

@@ -189,3 +189,26 @@ def test_a_solve_past_its_wall_clock_limit_is_killed():
     assert time.perf_counter() - t0 < 2.0
     status, ok, q = _solve_with_deadline(SnoptSolver(), prog, x, [0.9, -1.9], SolverOptions(), 60)
     assert ok and q == pytest.approx([1.0, -2.0], abs=1e-4)
+
+
+def test_rest_by_position_takes_small_motion_only():
+    from pydrake.math import RigidTransform, RollPitchYaw
+
+    from drake_bridge.settle import _moved_less
+
+    here = RigidTransform([0.1, 0.2, 0.3])
+    assert _moved_less(here, RigidTransform([0.1002, 0.2, 0.3]), 2.5e-4, 2.5e-3)
+    assert not _moved_less(here, RigidTransform([0.1003, 0.2, 0.3]), 2.5e-4, 2.5e-3)
+    turned = RigidTransform(RollPitchYaw(0.0, 0.0, 0.004), [0.1, 0.2, 0.3])
+    assert not _moved_less(here, turned, 2.5e-4, 2.5e-3)
+
+
+def test_a_box_on_a_table_is_at_rest_before_the_end(tmp_path):
+    # Simulated for 5 s with the early stop: a box set down on a slab stops within 2 s.
+    scene = write_scene(tmp_path, [
+        FLOOR,
+        ("box", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False),
+    ])
+    r = ops.OPS["simulate"](dict(scene, duration=5.0, stop_at_rest=True))
+    assert r["at_rest"] and r["sim_time"] < 2.0
+    assert r["motion"]["box"]["displacement_m"] < 1e-3

@@ -170,9 +170,10 @@ pub struct SurfaceRule {
     pub count: [u32; 2],
     /// Candidate objects, most typical first.
     pub items: Vec<String>,
-    /// Shelves: fraction of the shelf length to fill, [min, max].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub fill: Option<[f64; 2]>,
+    /// Objects put away inside the parent (in its drawers, behind its doors), most typical
+    /// first; how many follows from the room the drawers and shelves have.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub inside: Vec<String>,
     /// Lay the items out as one setting per seat (`count` is then the number of seats).
     #[serde(default)]
     pub place_settings: bool,

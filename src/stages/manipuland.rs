@@ -69,11 +69,7 @@ impl SurfaceRef {
             .scene
             .assets
             .get(&self.parent.asset)
-            .is_some_and(|rec| {
-                self.surface.link != rec.root_link
-                    || (!rec.joints.is_empty()
-                        && !matches!(self.surface.id.as_str(), "top" | "basin"))
-            })
+            .is_some_and(|rec| super::clutter::is_enclosed(rec, &self.surface))
     }
 
     /// World pose of the surface frame (origin at its centre, on the surface).

@@ -54,6 +54,16 @@ fn may_lie_flat(noun: &str) -> bool {
         .is_some_and(|p| p.typical[0].min(p.typical[1]) < 0.5 * p.typical[2])
 }
 
+/// Most copies of a flat thing in one stack when it is put away (folded clothes in a drawer).
+const STORED_STACK: u32 = 3;
+
+/// Whether a thing put away goes in low stacks: flat things (folded clothes, towels, plates).
+fn stacks_when_stored(noun: &str) -> bool {
+    StageState::category_of(noun)
+        .and_then(crate::assets::procedural::prior)
+        .is_some_and(|p| p.typical[2] < 0.3 * p.typical[0].min(p.typical[1]))
+}
+
 /// The `lay_flat` values to try, in order.
 fn lay_flat_options(noun: &str, lay_flat_first: bool) -> Vec<bool> {
     if !may_lie_flat(noun) {
@@ -125,6 +135,10 @@ impl BuiltinManipulandDesigner {
                     }
                 }
             }
+            Arrangement::Stored => {
+                Self::put_away(state, cx, &tiers[1], want, need);
+                return;
+            }
             _ => {}
         }
         // One item per surface in turn, so the levels of a shelf share the items (a bookcase
@@ -154,6 +168,57 @@ impl BuiltinManipulandDesigner {
                 }
                 live = still;
             }
+        }
+    }
+
+    /// Puts `need` of `want` away on the enclosed surfaces `keys` (drawers, shelves behind
+    /// doors), one surface after another in turn: flat things (folded clothes, plates) in
+    /// low stacks, the rest side by side.
+    fn put_away(
+        state: &mut StageState,
+        cx: &mut AgentCx<'_, StageState>,
+        keys: &[String],
+        want: &Want,
+        mut need: u32,
+    ) {
+        let per_stack = if stacks_when_stored(&want.noun) {
+            STORED_STACK
+        } else {
+            1
+        };
+        let mut live: Vec<String> = keys.to_vec();
+        while need > 0 && !live.is_empty() {
+            let mut still = Vec::new();
+            for key in live {
+                if need == 0 {
+                    break;
+                }
+                let placed = if per_stack > 1 {
+                    cx.call(
+                        state,
+                        Role::Designer,
+                        "place_stack",
+                        json!({"description": want.description, "count": need.min(per_stack), "surface": key}),
+                    )
+                    .map_or(0, |v| v["placed"].as_array().map_or(0, |a| a.len() as u32))
+                } else {
+                    let fits = lay_flat_options(&want.noun, false).into_iter().any(|flat| {
+                        cx.call(
+                            state,
+                            Role::Designer,
+                            "place_on_surface",
+                            json!({"description": want.description, "surface": key, "lay_flat": flat}),
+                        )
+                        .is_ok()
+                    });
+                    u32::from(fits)
+                };
+                if placed > 0 {
+                    need = need.saturating_sub(placed);
+                    still.push(key);
+                }
+            }
+            live = still;
         }
     }
 
@@ -265,9 +330,11 @@ impl Critic<StageState> for BuiltinManipulandCritic {
         let mine = items_on(state, &entity);
         let mut issues = Vec::new();
 
+        // What the prompt asked for; the room's usual clutter fills what room is left and
+        // is not a request.
         let (mut wanted, mut got) = (0u32, 0u32);
         for group in &state.plan.surfaces {
-            for w in &group.items {
+            for w in group.items.iter().filter(|w| w.explicit) {
                 let have = count_on(state, &entity, w);
                 wanted += w.count;
                 got += have.min(w.count);

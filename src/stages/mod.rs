@@ -5,6 +5,7 @@
 
 pub mod ceiling;
 pub mod checkpoint;
+pub mod clutter;
 pub mod common;
 pub mod furniture;
 pub mod furniture_builtin;

@@ -52,6 +52,8 @@ pub enum Arrangement {
     Stack,
     /// Small objects: a loose pile.
     Pile,
+    /// Small objects: put away in the parent furniture's drawers and behind its doors.
+    Stored,
     /// Small objects: inside a container.
     Inside {
         /// The container's noun.
@@ -265,7 +267,7 @@ fn fill_factor(d: Option<Density>) -> f64 {
 }
 
 /// Multiplier on small-object counts per density.
-fn clutter_factor(d: Option<Density>) -> f64 {
+pub(crate) fn clutter_factor(d: Option<Density>) -> f64 {
     match d {
         Some(Density::Minimalist | Density::Sparse) => 0.5,
         Some(Density::Pristine) => 0.75,
@@ -279,6 +281,51 @@ fn clutter_factor(d: Option<Density>) -> f64 {
 fn pick(range: [u32; 2], t: f64) -> u32 {
     let (lo, hi) = (range[0].min(range[1]), range[0].max(range[1]));
     lo + ((hi - lo) as f64 * t).round() as u32
+}
+
+/// Splits `total` small objects over candidate nouns (most typical first): the first takes
+/// half (a bookshelf is mostly books), the rest cycle through the list in order. A noun for
+/// which `single` holds (appliances, electronics, lamps) never takes the half and stops at
+/// `singles_cap` (one per parent: a counter has one coffee machine, not half a dozen).
+pub(crate) fn split_counts(
+    total: u32,
+    items: &[&str],
+    single: impl Fn(&str) -> bool,
+    singles_cap: u32,
+) -> Vec<(String, u32)> {
+    let mut counts: Vec<(String, u32)> = Vec::new();
+    if items.is_empty() || total == 0 {
+        return counts;
+    }
+    let first = if items.len() > 1 && total >= 4 && !single(items[0]) {
+        total.div_ceil(2)
+    } else {
+        0
+    };
+    if first > 0 {
+        counts.push((items[0].to_string(), first));
+    }
+    let rest = if first > 0 { &items[1..] } else { items };
+    let mut left = total - first;
+    while left > 0 {
+        let mut added = false;
+        for noun in rest {
+            if left == 0 {
+                break;
+            }
+            match counts.iter_mut().find(|(n, _)| n == noun) {
+                Some((_, c)) if single(noun) && *c >= singles_cap => continue,
+                Some((_, c)) => *c += 1,
+                None => counts.push((noun.to_string(), 1)),
+            }
+            left -= 1;
+            added = true;
+        }
+        if !added {
+            break;
+        }
+    }
+    counts
 }
 
 /// True when `a` names `b` or a kind of `b`, or the other way round (explicit "table" covers
@@ -302,7 +349,7 @@ fn covers(lex: &Lexicon, a: &str, b: &str) -> bool {
 }
 
 /// Appliances, electronics and lamps: one per supporting piece unless the prompt asks for more.
-fn one_per_parent(lex: &Lexicon, noun: &str) -> bool {
+pub(crate) fn one_per_parent(lex: &Lexicon, noun: &str) -> bool {
     ["appliance", "electronics", "lamp"]
         .iter()
         .any(|kind| covers(lex, noun, kind))

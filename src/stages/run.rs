@@ -285,11 +285,38 @@ fn surface_furniture<'a>(
 
 /// Splits the room's small objects over the supporting entities present: per entity a plan
 /// holding only that entity's share.
+///
+/// Each piece's defaults grow to its surfaces (`clutter::sized_to`), and the room's defaults
+/// together stay near `clutter::room_budget`: past it, every piece's growth shrinks by the
+/// same share.
 fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String, RoomPlan)> {
+    let full = split_plans(scene, room, plan, 1.0);
+    let defaults: u32 = full
+        .iter()
+        .flat_map(|(_, p)| p.surfaces.iter().flat_map(|g| &g.items))
+        .filter(|w| !w.explicit)
+        .map(|w| w.count)
+        .sum();
+    let budget = super::clutter::room_budget(plan.density);
+    if defaults <= budget {
+        return full;
+    }
+    split_plans(scene, room, plan, f64::from(budget) / f64::from(defaults))
+}
+
+/// `entity_plans` with each piece's growth scaled by `share`.
+fn split_plans(
+    scene: &SceneState,
+    room: &str,
+    plan: &RoomPlan,
+    share: f64,
+) -> Vec<(String, RoomPlan)> {
     let furniture: Vec<(String, String)> = surface_furniture(scene, room)
         .map(|o| (o.id.clone(), scene.scene.built_as(o).to_string()))
         .collect();
     let mut per: BTreeMap<String, RoomPlan> = BTreeMap::new();
+    // Default small objects each piece may still take (`clutter::piece_budget`).
+    let mut budget: BTreeMap<String, u32> = BTreeMap::new();
     for group in &plan.surfaces {
         let mut hosts: Vec<&(String, String)> = furniture
             .iter()
@@ -297,6 +324,7 @@ fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String,
                 group.parent == "any" || super::StageState::names(&group.parent, cat)
             })
             .collect();
+        let own_kind = !hosts.is_empty();
         if hosts.is_empty() {
             // Nothing of the wanted kind: any furniture with a surface, tables first.
             hosts = furniture.iter().filter(|(_, c)| c != "chair").collect();
@@ -307,19 +335,35 @@ fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String,
         }
         let n = hosts.len() as u32;
         for (i, (id, cat)) in hosts.iter().enumerate() {
+            // Even split; the remainders go round the hosts (one lamp, one book and one
+            // clock on two nightstands: two on one, one on the other).
+            let mut turn = 0u32;
             let items: Vec<Want> = group
                 .items
                 .iter()
                 .map(|w| {
-                    // Even split; the first hosts take the remainder.
-                    let share = w.count / n + u32::from((i as u32) < w.count % n);
+                    let extra = (i as u32 + n - turn % n) % n < w.count % n;
+                    turn += w.count % n;
                     Want {
-                        count: share,
+                        count: w.count / n + u32::from(extra),
                         ..w.clone()
                     }
                 })
                 .filter(|w| w.count > 0)
                 .collect();
+            let items = match scene
+                .scene
+                .object(id)
+                .and_then(|o| scene.scene.assets.get(&o.asset))
+            {
+                Some(rec) if own_kind && !group.place_settings => {
+                    let left = budget
+                        .entry(id.clone())
+                        .or_insert_with(|| super::clutter::piece_budget(plan.density));
+                    super::clutter::sized_to(rec, items, plan.density, share, left)
+                }
+                _ => items,
+            };
             if items.is_empty() {
                 continue;
             }

@@ -225,7 +225,12 @@ fn drawers_are_open_boxes_with_a_surface_inside() {
         .iter()
         .find(|j| j.kind == crate::assets::JointKind::Prismatic)
         .unwrap();
-    assert_eq!(j.axis, [0.0, 1.0, 0.0]);
+    // Out of the front, climbing a little so a closed drawer stays shut.
+    assert!(
+        j.axis[1] > 0.99 && j.axis[2] > 0.0 && j.axis[0] == 0.0,
+        "{:?}",
+        j.axis
+    );
     assert!(j.upper > 0.2);
 }
 

@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 use super::{
     Arrangement, Builder, MAX_COUNT, RoomPlan, SurfaceItem, SurfaceWant, Want, clutter_factor,
     covers, fill_factor, is_seat, is_table_like, one_per_parent, pick, place_to_arrangement,
+    split_counts,
 };
 use crate::knowledge::{KbItem, Place};
 use crate::prompt::{Density, Mention, Support};
@@ -349,12 +350,20 @@ impl Builder<'_> {
                 continue;
             }
             done.push(parent.clone());
+            let kb_rule = self.kb.surface_rule(&parent);
             let rule = self
                 .rt
                 .and_then(|r| r.surface_rule(&parent))
-                .or_else(|| self.kb.surface_rule(&parent))
+                .or(kb_rule)
                 .cloned();
-            let Some(rule) = rule else { continue };
+            let Some(mut rule) = rule else { continue };
+            // What a piece holds inside is the same in any room: a room's rule for its top
+            // takes the piece's own list when it has none.
+            if rule.inside.is_empty()
+                && let Some(k) = kb_rule
+            {
+                rule.inside.clone_from(&k.inside);
+            }
             if rule.place_settings {
                 let seats: u32 = self
                     .plan
@@ -393,59 +402,30 @@ impl Builder<'_> {
             }
             let per_parent = ((pick(rule.count, t) as f64) * cf).round() as u32;
             let total = per_parent.saturating_mul(n_parents).min(MAX_COUNT);
-            let items: Vec<&String> = rule
+            let usable = |i: &&String| !self.excluded(i) && !self.fixed_by_prompt(i);
+            let items: Vec<&str> = rule
                 .items
                 .iter()
-                .filter(|i| !self.excluded(i) && !self.fixed_by_prompt(i))
+                .filter(usable)
+                .map(String::as_str)
                 .collect();
-            if items.is_empty() || total == 0 {
-                continue;
-            }
-            // The most typical object takes half (a bookshelf is mostly books); the rest
-            // cycle through the list in order. Appliances, electronics and lamps come one per
-            // parent (a kitchen counter has one coffee machine, not half a dozen), so they never
-            // take the half and the cycle skips them once every parent has one.
             let single = |noun: &str| one_per_parent(self.lex, noun);
-            let mut counts: Vec<(String, u32)> = Vec::new();
-            let first = if items.len() > 1 && total >= 4 && !single(items[0]) {
-                total.div_ceil(2)
-            } else {
-                0
-            };
-            if first > 0 {
-                counts.push((items[0].clone(), first));
-            }
-            let rest: Vec<&String> = if first > 0 {
-                items[1..].to_vec()
-            } else {
-                items.clone()
-            };
-            let mut left = total - first;
-            while left > 0 {
-                let mut added = false;
-                for noun in &rest {
-                    if left == 0 {
-                        break;
-                    }
-                    let have = counts
-                        .iter()
-                        .find(|(n, _)| n == *noun)
-                        .map_or(0, |(_, c)| *c);
-                    if single(noun) && have >= n_parents {
-                        continue;
-                    }
-                    match counts.iter_mut().find(|(n, _)| n == *noun) {
-                        Some((_, c)) => *c += 1,
-                        None => counts.push(((*noun).clone(), 1)),
-                    }
-                    left -= 1;
-                    added = true;
-                }
-                if !added {
-                    break;
-                }
-            }
-            for (noun, c) in counts {
+            let counts = split_counts(total, &items, single, n_parents);
+            // What is put away inside: a first estimate of one per candidate and parent; the
+            // manipuland stage sizes it to the drawers and shelves the piece has.
+            let inside: Vec<&str> = rule
+                .inside
+                .iter()
+                .filter(usable)
+                .map(String::as_str)
+                .collect();
+            let stored_total = ((inside.len() as u32 * n_parents) as f64 * cf).round() as u32;
+            let stored = split_counts(stored_total.min(MAX_COUNT), &inside, single, n_parents);
+            let arranged = counts
+                .into_iter()
+                .map(|c| (c, Arrangement::Free))
+                .chain(stored.into_iter().map(|c| (c, Arrangement::Stored)));
+            for ((noun, c), arrangement) in arranged {
                 self.surface.push(SurfaceItem {
                     parent: parent.clone(),
                     want: Want {
@@ -454,7 +434,7 @@ impl Builder<'_> {
                         count: c,
                         explicit: false,
                         at_least: false,
-                        arrangement: Arrangement::Free,
+                        arrangement,
                         height_m: None,
                         parent_instance: None,
                     },

@@ -1,0 +1,252 @@
+//! How much clutter one supporting piece holds: the room's usual small objects for it, sized to
+//! the surfaces the built piece has (its top, its open shelves, and the drawers and shelves
+//! behind its doors).
+//!
+//! The plan knows a room type's usual objects per kind of parent, but not how large the
+//! parent turned out: a 2.4 m counter and a 0.6 m one get the same list. Here each surface
+//! takes a share of its area in objects (`COVERAGE`, scaled by the prompt's density word), the
+//! count follows from the objects' typical footprints, and the plan's defaults for the piece
+//! grow to that count. What the prompt asked for is never changed: explicit wants keep their
+//! counts, and a parent the prompt filled itself gets no defaults (the plan already left it
+//! out).
+
+use super::StageState;
+use super::plan::{Arrangement, Want, clutter_factor, one_per_parent, split_counts};
+use crate::prompt::{self, Density};
+use crate::scene::{AssetRecord, SurfaceRecord};
+
+/// Share of a surface's area that the usual clutter covers, by kind of surface: a table or
+/// dresser top, an open shelf, a seat or mattress, a drawer or a shelf behind a door.
+struct Coverage {
+    top: f64,
+    shelf: f64,
+    seat: f64,
+    enclosed: f64,
+}
+
+const COVERAGE: Coverage = Coverage {
+    top: 0.2,
+    shelf: 0.3,
+    seat: 0.1,
+    enclosed: 0.3,
+};
+
+/// Most default small objects one piece gets at the usual density, scaled like the coverage
+/// (a long bookcase is not filled with 150 books: each one is a body the physics steps have to
+/// carry).
+pub const MAX_PER_PIECE: u32 = 24;
+
+/// Footprint of an object whose size nobody knows, m².
+const UNKNOWN_FOOTPRINT: f64 = 0.02;
+
+/// Behind a door or in a drawer: a surface of a moving link (a drawer), or any surface but
+/// the top of an articulated piece (shelves behind its doors).
+pub fn is_enclosed(rec: &AssetRecord, s: &SurfaceRecord) -> bool {
+    s.link != rec.root_link || (!rec.joints.is_empty() && !matches!(s.id.as_str(), "top" | "basin"))
+}
+
+/// Area the usual clutter covers on one piece, m²: `(open, enclosed)`.
+pub fn clutter_area(rec: &AssetRecord, density: Option<Density>) -> (f64, f64) {
+    let scale = clutter_factor(density);
+    let (mut open, mut enclosed) = (0.0, 0.0);
+    for s in &rec.surfaces {
+        let area = s.size[0] * s.size[1];
+        if is_enclosed(rec, s) {
+            enclosed += (COVERAGE.enclosed * scale).min(0.8) * area;
+            continue;
+        }
+        let share = match s.id.as_str() {
+            "seat" | "chaise" => COVERAGE.seat,
+            id if id.starts_with("shelf") || id.starts_with("upper") || id.starts_with("step") => {
+                COVERAGE.shelf
+            }
+            _ => COVERAGE.top,
+        };
+        open += (share * scale).min(0.8) * area;
+    }
+    (open, enclosed)
+}
+
+/// Typical footprint of a small object, m² (upright, as it is placed first).
+fn footprint(noun: &str) -> f64 {
+    StageState::category_of(noun)
+        .and_then(crate::assets::procedural::prior)
+        .map_or(UNKNOWN_FOOTPRINT, |p| {
+            (p.typical[0] * p.typical[1]).max(1e-4)
+        })
+}
+
+/// How many objects of `nouns` (mixed as `split_counts` mixes them) cover `area` m².
+fn count_for(area: f64, nouns: &[&str]) -> u32 {
+    if nouns.is_empty() || area <= 0.0 {
+        return 0;
+    }
+    let mean = nouns.iter().map(|n| footprint(n)).sum::<f64>() / nouns.len() as f64;
+    (area / mean).floor() as u32
+}
+
+/// Default small objects of one room at the usual density: every one is a body that
+/// settling and the stability check simulate, and a room past this costs minutes.
+pub const ROOM_DEFAULTS: u32 = 40;
+
+/// How many default small objects one room may get at `density`: `ROOM_DEFAULTS` scaled like
+/// the coverage.
+pub fn room_budget(density: Option<Density>) -> u32 {
+    (f64::from(ROOM_DEFAULTS) * clutter_factor(density)).round() as u32
+}
+
+/// How many default small objects one piece may get at `density`: `MAX_PER_PIECE` scaled
+/// like the coverage.
+pub fn piece_budget(density: Option<Density>) -> u32 {
+    (f64::from(MAX_PER_PIECE) * clutter_factor(density)).round() as u32
+}
+
+/// The share of the plan's small objects that piece `rec` gets, with its default (not asked
+/// for) objects grown to what its surfaces hold: `items` is the piece's share of one surface
+/// group, in plan order. Open defaults grow to the open surfaces, `Stored` ones to the
+/// enclosed ones; neither shrinks, and growth takes from `budget`, what the piece may still
+/// take over all its groups (`piece_budget`); `share` scales the growth (the room's budget,
+/// `room_budget`, split over its pieces).
+pub fn sized_to(
+    rec: &AssetRecord,
+    items: Vec<Want>,
+    density: Option<Density>,
+    share: f64,
+    budget: &mut u32,
+) -> Vec<Want> {
+    let lex = prompt::lexicon();
+    let (open_area, enclosed_area) = clutter_area(rec, density);
+    let single = |noun: &str| one_per_parent(lex, noun);
+    let is_default =
+        |w: &Want| !w.explicit && matches!(w.arrangement, Arrangement::Free | Arrangement::Stored);
+    let mut out: Vec<Want> = items.iter().filter(|w| !is_default(w)).cloned().collect();
+    for stored in [false, true] {
+        let group: Vec<&Want> = items
+            .iter()
+            .filter(|w| is_default(w) && (w.arrangement == Arrangement::Stored) == stored)
+            .collect();
+        if group.is_empty() {
+            continue;
+        }
+        let nouns: Vec<&str> = group.iter().map(|w| w.noun.as_str()).collect();
+        let planned: u32 = group.iter().map(|w| w.count).sum();
+        let area = if stored { enclosed_area } else { open_area };
+        let room = (f64::from(count_for(area, &nouns)) * share).round() as u32;
+        let want = room.min(*budget).max(planned);
+        *budget = budget.saturating_sub(want);
+        let counts = split_counts(want, &nouns, single, 1);
+        for w in group {
+            // A single (a lamp, an appliance) keeps its planned count.
+            let count = if single(&w.noun) {
+                w.count
+            } else {
+                counts
+                    .iter()
+                    .find(|(n, _)| *n == w.noun)
+                    .map_or(0, |(_, c)| *c)
+                    .max(w.count)
+            };
+            if count > 0 {
+                out.push(Want { count, ..w.clone() });
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assets::procedural::{AssetRequest, build};
+
+    fn record(category: &str) -> AssetRecord {
+        let asset = build(&AssetRequest {
+            category: category.into(),
+            size: None,
+            material: None,
+            color: None,
+            seed: 1,
+        })
+        .expect("the library builds it");
+        asset.record()
+    }
+
+    fn default(noun: &str, count: u32, arrangement: Arrangement) -> Want {
+        Want {
+            noun: noun.into(),
+            description: noun.into(),
+            count,
+            explicit: false,
+            at_least: false,
+            arrangement,
+            height_m: None,
+            parent_instance: None,
+        }
+    }
+
+    #[test]
+    fn a_dresser_fills_its_drawers_and_a_bookcase_its_shelves() {
+        let dresser = sized_to(
+            &record("dresser"),
+            vec![
+                default("vase", 1, Arrangement::Free),
+                default("photo frame", 1, Arrangement::Free),
+                default("clothes", 2, Arrangement::Stored),
+            ],
+            None,
+            1.0,
+            &mut piece_budget(None),
+        );
+        let clothes = dresser
+            .iter()
+            .find(|w| w.noun == "clothes")
+            .map(|w| w.count);
+        // Eight drawers of 0.54 x 0.38 m.
+        assert!(clothes.is_some_and(|c| c >= 6), "{dresser:?}");
+        let books: u32 = sized_to(
+            &record("bookshelf"),
+            vec![
+                default("book", 12, Arrangement::Free),
+                default("photo frame", 2, Arrangement::Free),
+            ],
+            None,
+            1.0,
+            &mut piece_budget(None),
+        )
+        .iter()
+        .map(|w| w.count)
+        .sum();
+        assert!((20..=MAX_PER_PIECE).contains(&books), "{books}");
+    }
+
+    #[test]
+    fn asked_for_counts_and_density_words_hold() {
+        let mut asked = default("book", 3, Arrangement::Free);
+        asked.explicit = true;
+        let out = sized_to(
+            &record("bookshelf"),
+            vec![asked.clone()],
+            None,
+            1.0,
+            &mut piece_budget(None),
+        );
+        assert_eq!(out, vec![asked]);
+        let total = |d: Option<Density>| -> u32 {
+            sized_to(
+                &record("bookshelf"),
+                vec![default("book", 2, Arrangement::Free)],
+                d,
+                1.0,
+                &mut piece_budget(d),
+            )
+            .iter()
+            .map(|w| w.count)
+            .sum()
+        };
+        assert!(total(Some(Density::Minimalist)) < total(None));
+        assert!(
+            total(Some(Density::Minimalist)) >= 2,
+            "never below the plan"
+        );
+    }
+}
