@@ -38,7 +38,7 @@ use crate::util::fsx::write_atomic;
 
 pub use coverage::{PlanCoverage, PlannedRequirement};
 pub use floor::{Nav, NavRoom, Oob};
-pub use stability::stability;
+pub use stability::{stabilities, stability};
 
 /// Version of the `metrics.json` layout.
 pub const METRICS_VERSION: u32 = 1;
@@ -365,21 +365,35 @@ pub fn evaluate(
 ) -> Result<Metrics, EvalError> {
     let posed = posed_objects(&state.scene, &state.assets);
     let reading = prompt::read(&state.scene.provenance.prompt);
-    let stb_with = |model: ContactModel| -> Result<Option<Stability>, EvalError> {
-        match (pool, &opts.stability) {
-            (Some(pool), Some(s)) if opts.stb_contacts.contains(&model) => {
-                let s = StabilityOptions {
+    let plan_coverage = coverage::plan_coverage(&reading, &state.scene);
+    let models: Vec<ContactModel> = [ContactModel::AsWritten, ContactModel::Point]
+        .into_iter()
+        .filter(|m| opts.stb_contacts.contains(m))
+        .collect();
+    let mut runs = match (pool, &opts.stability) {
+        (Some(pool), Some(s)) if !models.is_empty() => {
+            let each: Vec<StabilityOptions> = models
+                .iter()
+                .map(|&model| StabilityOptions {
                     contact: ContactOptions { model },
                     ..*s
-                };
-                Ok(Some(stability(state, pool, &s)?))
-            }
-            _ => Ok(None),
+                })
+                .collect();
+            models
+                .iter()
+                .copied()
+                .zip(stabilities(state, pool, &each)?)
+                .collect()
         }
+        _ => Vec::new(),
     };
-    let plan_coverage = coverage::plan_coverage(&reading, &state.scene);
-    let stb = stb_with(ContactModel::AsWritten)?;
-    let stb_point = stb_with(ContactModel::Point)?;
+    let mut take = |m: ContactModel| {
+        runs.iter()
+            .position(|(k, _)| *k == m)
+            .map(|i| runs.remove(i).1)
+    };
+    let stb = take(ContactModel::AsWritten);
+    let stb_point = take(ContactModel::Point);
     Ok(Metrics {
         version: METRICS_VERSION,
         counts: counts(state),

@@ -131,7 +131,71 @@ pub fn stability(
     pool: &BridgePool,
     opts: &StabilityOptions,
 ) -> Result<Stability, EvalError> {
-    let settle = SettleOptions {
+    let mut all = stabilities(state, pool, std::slice::from_ref(opts))?;
+    Ok(all.remove(0))
+}
+
+/// The stability simulation under each of `opts` (contact models, say), all islands of all
+/// of them in one batch over the pool, largest islands first, so a slow island under one
+/// model runs beside the others instead of after them.
+pub fn stabilities(
+    state: &SceneState,
+    pool: &BridgePool,
+    opts: &[StabilityOptions],
+) -> Result<Vec<Stability>, EvalError> {
+    let islands = islands(state);
+    if islands.is_empty() {
+        return Ok(opts.iter().map(|o| verdicts(o, 0, &[])).collect());
+    }
+    let mut workspace = Workspace::new(state)?;
+    let mut directives = Vec::new();
+    for island in &islands {
+        directives.push(workspace.write_subset(state, &island_members(state, island))?);
+    }
+    let mut order: Vec<usize> = (0..islands.len()).collect();
+    order.sort_by_key(|&i| std::cmp::Reverse(islands[i].len()));
+    // (option index, island index, op) of each job, in submission order.
+    let mut slots = Vec::new();
+    let mut jobs = Vec::new();
+    for &i in &order {
+        for (k, o) in opts.iter().enumerate() {
+            let (op, args) =
+                request_args(&directives[i], &workspace.package_xml(), &settle_options(o));
+            jobs.push(Job::new(&op, args));
+            slots.push((k, i, op));
+        }
+    }
+    let mut results: Vec<Vec<Option<SettleResult>>> = opts
+        .iter()
+        .map(|_| islands.iter().map(|_| None).collect())
+        .collect();
+    for ((k, i, op), reply) in slots.into_iter().zip(pool.run_all(jobs)) {
+        let r = parse_result(&op, reply.map_err(PhysicsError::from)?)?;
+        tracing::info!(
+            "STB ({:?}) island of {} ({} free): {:.2} s simulated{} in {:.1} s wall ({:.1} ms/step, plant {:.1} s)",
+            opts[k].contact.model,
+            islands[i][0],
+            islands[i].len(),
+            r.sim_time,
+            if r.at_rest { ", at rest" } else { "" },
+            r.wall_s,
+            r.ms_per_step,
+            r.build_s
+        );
+        results[k][i] = Some(r);
+    }
+    Ok(opts
+        .iter()
+        .zip(results)
+        .map(|(o, rs)| {
+            let rs: Vec<SettleResult> = rs.into_iter().flatten().collect();
+            verdicts(o, islands.len(), &rs)
+        })
+        .collect())
+}
+
+fn settle_options(opts: &StabilityOptions) -> SettleOptions {
+    SettleOptions {
         max_time: opts.duration_s,
         time_step: opts.time_step_s,
         stop_at_rest: opts.stop_at_rest,
@@ -141,35 +205,7 @@ pub fn stability(
         contact: opts.contact,
         wall_limit: 3600.0,
         ..SettleOptions::default()
-    };
-    let islands = islands(state);
-    let mut results: Vec<SettleResult> = Vec::new();
-    if !islands.is_empty() {
-        let mut workspace = Workspace::new(state)?;
-        let mut jobs = Vec::new();
-        let mut op = String::new();
-        for island in &islands {
-            let directives = workspace.write_subset(state, &island_members(state, island))?;
-            let (o, args) = request_args(&directives, &workspace.package_xml(), &settle);
-            op = o.clone();
-            jobs.push(Job::new(&o, args));
-        }
-        for (island, r) in islands.iter().zip(pool.run_all(jobs)) {
-            let r = parse_result(&op, r.map_err(PhysicsError::from)?)?;
-            tracing::info!(
-                "STB island of {} ({} free): {:.2} s simulated{} in {:.1} s wall ({:.1} ms/step, plant {:.1} s)",
-                island[0],
-                island.len(),
-                r.sim_time,
-                if r.at_rest { ", at rest" } else { "" },
-                r.wall_s,
-                r.ms_per_step,
-                r.build_s
-            );
-            results.push(r);
-        }
     }
-    Ok(verdicts(opts, islands.len(), &results))
 }
 
 /// STB and the motion statistics from the islands' results.

@@ -14,7 +14,7 @@
 //! `PostProcessOptions::remove_penetrating_above_m` at the very end are removed, so what is
 //! written is collision-free. Every removal is recorded in `scene.removed` with its reason.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
 
 use serde::Serialize;
@@ -106,6 +106,8 @@ pub struct PostProcessReport {
     pub manipuland: PhaseReport,
     /// Objects removed at the end because they still penetrated something.
     pub removed_penetrating: Vec<String>,
+    /// Subsets settled again after those removals.
+    pub resettled: Vec<SubsetReport>,
     /// Wall time, seconds (not written into scene files).
     #[serde(skip)]
     pub seconds: f64,
@@ -126,15 +128,32 @@ pub fn post_process(
     };
     let furniture = furniture_phase(state, pool, workspace.as_mut(), opts)?;
     let manipuland = manipuland_phase(state, pool, workspace.as_mut(), opts)?;
+    let entities: BTreeMap<String, String> = state
+        .scene
+        .objects
+        .iter()
+        .map(|o| (o.id.clone(), supporting_entity(&state.scene, &o.id)))
+        .collect();
     let removed_penetrating = match opts.remove_penetrating_above_m {
         Some(t) => remove_penetrating(state, t)?,
         None => Vec::new(),
     };
+    let mut resettled = Vec::new();
+    if let (Some(pool), Some(ws), false) =
+        (pool, workspace.as_mut(), removed_penetrating.is_empty())
+    {
+        let touched: BTreeSet<String> = removed_penetrating
+            .iter()
+            .filter_map(|id| entities.get(id).cloned())
+            .collect();
+        resettled = resettle(state, pool, ws, &touched, &opts.settle)?;
+    }
     state.prune_assets();
     Ok(PostProcessReport {
         furniture,
         manipuland,
         removed_penetrating,
+        resettled,
         seconds: t0.elapsed().as_secs_f64(),
     })
 }
@@ -394,6 +413,74 @@ fn surface_regions(state: &SceneState) -> BTreeMap<String, XyRegion> {
     out
 }
 
+/// One settling subset per supporting entity (the entity welded, its small objects free; small
+/// objects on the floor share one subset with all furniture welded); only the entities in
+/// `only` when given.
+fn manipuland_subsets(
+    state: &SceneState,
+    only: Option<&BTreeSet<String>>,
+) -> Vec<(String, BTreeMap<String, Role>)> {
+    let mut groups: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for o in state.scene.objects.iter().filter(|o| is_free_manipuland(o)) {
+        let entity = supporting_entity(&state.scene, &o.id);
+        if only.is_none_or(|set| set.contains(&entity)) {
+            groups.entry(entity).or_default().push(o.id.clone());
+        }
+    }
+    let architecture: Vec<String> = ids_where(&state.scene, |o| o.kind == ObjectKind::Architecture);
+    let mut subsets = Vec::new();
+    for (entity, items) in groups {
+        let mut members: BTreeMap<String, Role> = architecture
+            .iter()
+            .map(|a| (a.clone(), Role::Welded))
+            .collect();
+        if entity == "floor" {
+            for o in
+                state.scene.objects.iter().filter(|o| {
+                    o.kind != ObjectKind::Manipuland && o.kind != ObjectKind::Architecture
+                })
+            {
+                members.insert(o.id.clone(), Role::Welded);
+            }
+        } else {
+            members.insert(entity.clone(), Role::Welded);
+        }
+        for i in items {
+            members.insert(i, Role::Free);
+        }
+        subsets.push((entity, members));
+    }
+    subsets
+}
+
+/// Settles again the small objects of the entities that lost objects at the very end: a bowl
+/// that came to rest on a napkin which was then removed would otherwise hang in the air.
+fn resettle(
+    state: &mut SceneState,
+    pool: &BridgePool,
+    workspace: &mut Workspace,
+    entities: &BTreeSet<String>,
+    opts: &SettleOptions,
+) -> Result<Vec<SubsetReport>, PhysicsError> {
+    let subsets = manipuland_subsets(state, Some(entities));
+    let results = settle_subsets(state, pool, workspace, &subsets, opts)?;
+    let mut reports = Vec::new();
+    for ((name, members), result) in subsets.iter().zip(&results) {
+        reports.push(subset_report(name, result));
+        for (id, role) in members {
+            if *role != Role::Free {
+                continue;
+            }
+            if let Some(p) = settled_pose(state, result, id)
+                && let Some(o) = state.scene.objects.iter_mut().find(|o| &o.id == id)
+            {
+                o.world_from_object = p;
+            }
+        }
+    }
+    Ok(reports)
+}
+
 /// Small-object phase: project them (3-D, over their surfaces), settle per supporting entity,
 /// remove what fell, project again.
 pub fn manipuland_phase(
@@ -425,35 +512,7 @@ pub fn manipuland_phase(
     report.projection = project(state, regions)?;
 
     if let (Some(pool), Some(ws)) = (pool, workspace) {
-        let mut groups: BTreeMap<String, Vec<String>> = BTreeMap::new();
-        for o in state.scene.objects.iter().filter(|o| is_free_manipuland(o)) {
-            groups
-                .entry(supporting_entity(&state.scene, &o.id))
-                .or_default()
-                .push(o.id.clone());
-        }
-        let architecture: Vec<String> =
-            ids_where(&state.scene, |o| o.kind == ObjectKind::Architecture);
-        let mut subsets = Vec::new();
-        for (entity, items) in &groups {
-            let mut members: BTreeMap<String, Role> = architecture
-                .iter()
-                .map(|a| (a.clone(), Role::Welded))
-                .collect();
-            if entity == "floor" {
-                for o in state.scene.objects.iter().filter(|o| {
-                    o.kind != ObjectKind::Manipuland && o.kind != ObjectKind::Architecture
-                }) {
-                    members.insert(o.id.clone(), Role::Welded);
-                }
-            } else {
-                members.insert(entity.clone(), Role::Welded);
-            }
-            for i in items {
-                members.insert(i.clone(), Role::Free);
-            }
-            subsets.push((entity.clone(), members));
-        }
+        let subsets = manipuland_subsets(state, None);
         let before: BTreeMap<String, Pose> = state
             .scene
             .objects

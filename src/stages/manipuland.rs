@@ -171,6 +171,81 @@ fn occupied(state: &StageState, s: &SurfaceRef) -> Vec<Slot> {
         .collect()
 }
 
+/// The supporting object's own collision pieces that reach into the free space above `s`
+/// (a sideboard's partitions between its bays, a sink's basin over the shelf below), as
+/// footprints clipped to the surface: an item placed across one would stand in the wood.
+/// Furniture only; a container's cavity has its own fill rules.
+fn parent_intrusions(state: &StageState, s: &SurfaceRef) -> Vec<Slot> {
+    if s.parent.kind != ObjectKind::Furniture || is_cavity(s) {
+        return Vec::new();
+    }
+    let Some(asset) = state.scene.assets.get(&s.parent.asset) else {
+        return Vec::new();
+    };
+    intrusions(asset, &s.surface, &s.parent.joint_positions)
+        .into_iter()
+        .map(|[u0, u1, v0, v1]| Slot {
+            u: (u0 + u1) / 2.0,
+            v: (v0 + v1) / 2.0,
+            hu: (u1 - u0) / 2.0,
+            hv: (v1 - v0) / 2.0,
+        })
+        .collect()
+}
+
+/// Rectangles `[u0, u1, v0, v1]` (surface frame) of `asset`'s collision pieces that reach more
+/// than 2 mm into the box of free space above `surface` (its rectangle, up to its clearance).
+pub(crate) fn intrusions(
+    asset: &Asset,
+    surface: &SurfaceRecord,
+    joints: &std::collections::BTreeMap<String, f64>,
+) -> Vec<[f64; 4]> {
+    const SLACK: f64 = 0.002;
+    let model = posed_object("parent", asset, &Pose::IDENTITY, joints);
+    let c = surface.center;
+    let (su, sv) = (surface.size[0] / 2.0, surface.size[1] / 2.0);
+    let (z0, z1) = (c[2] + SLACK, c[2] + surface.clearance - SLACK);
+    model
+        .pieces
+        .iter()
+        .filter(|p| p.hi.z > z0 && p.lo.z < z1)
+        .filter_map(|p| {
+            let [lo, hi] = slab_extent(&p.vertices, z0, z1)?;
+            let (u0, u1) = ((lo[0] - c[0]).max(-su), (hi[0] - c[0]).min(su));
+            let (v0, v1) = ((lo[1] - c[1]).max(-sv), (hi[1] - c[1]).min(sv));
+            (u1 - u0 > SLACK && v1 - v0 > SLACK).then_some([u0, u1, v0, v1])
+        })
+        .collect()
+}
+
+/// Horizontal extent `[lo, hi]` of the part of a convex hull between heights `z0` and `z1`
+/// (a slanted leg crosses a shelf's free space only where it passes through it): every segment
+/// between two hull vertices lies in the hull, so clipping them all to the slab reaches every
+/// corner of the clipped hull.
+fn slab_extent(vertices: &[Vector3<f64>], z0: f64, z1: f64) -> Option<[[f64; 2]; 2]> {
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    let mut add = |p: Vector3<f64>| {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    };
+    for (i, a) in vertices.iter().enumerate() {
+        if (z0..=z1).contains(&a.z) {
+            add(*a);
+        }
+        for b in &vertices[i + 1..] {
+            for z in [z0, z1] {
+                if (a.z - z) * (b.z - z) < 0.0 {
+                    add(a + (b - a) * ((z - a.z) / (b.z - a.z)));
+                }
+            }
+        }
+    }
+    (lo[0] <= hi[0]).then_some([lo, hi])
+}
+
 /// Local rotation of an item on a surface: yaw, optionally laid on its side first.
 fn item_rotation(yaw_deg: f64, lay_flat: bool) -> UnitQuaternion<f64> {
     let yaw = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw_deg.to_radians());
@@ -231,6 +306,7 @@ fn fit(
         ));
     }
     let mut taken = occupied(state, s);
+    taken.extend(parent_intrusions(state, s));
     taken.extend_from_slice(extra);
     let make = |u: f64, v: f64| Slot { u, v, hu, hv };
     let free = |slot: &Slot| {

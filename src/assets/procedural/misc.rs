@@ -478,12 +478,13 @@ fn easel(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let _ = METAL;
     single(
         b.finish()?,
+        // The strip of ledge in front of the canvas (brushes, a paint tube).
         vec![surface(
             "ledge",
             "body",
-            [0.0, ly + 0.02, ledge_z + 0.01],
-            [w - 0.05, 0.06],
-            0.5,
+            [0.0, ly + 0.035, ledge_z + 0.01],
+            [w - 0.05, 0.03],
+            0.1,
         )],
     )
 }
