@@ -53,6 +53,10 @@ enum Command {
         /// of the prompt (another language, gibberish) instead of exiting with status 2.
         #[arg(long)]
         lenient: bool,
+        /// Skip the stability simulations of metrics.json (most of a run's time); the scene
+        /// is post-processed and settled all the same, and `scenesmith eval DIR` adds them.
+        #[arg(long)]
+        no_stb: bool,
         #[command(flatten)]
         llm: LlmArgs,
         /// Exports to write into DIR/export: a comma-separated list of mjcf, usd, glb, or
@@ -800,6 +804,7 @@ fn main() -> ExitCode {
             no_render,
             resume,
             lenient,
+            no_stb,
             llm,
             export,
         } => match scenesmith::export::ExportSet::parse(&export) {
@@ -816,6 +821,7 @@ fn main() -> ExitCode {
                         backend,
                         resume,
                         lenient,
+                        stb: !no_stb,
                     },
                 )
             }),

@@ -136,6 +136,9 @@ pub struct GenerateOptions {
     /// Build a default room for a prompt the built-in reader cannot read (another
     /// language, gibberish) instead of refusing it.
     pub lenient: bool,
+    /// Run the stability simulations of `metrics.json` (both contact models; most of a run's
+    /// time). Without them `stb` and `stb_point` are absent; `scenesmith eval DIR` adds them.
+    pub stb: bool,
 }
 
 impl GenerateOptions {
@@ -152,6 +155,7 @@ impl GenerateOptions {
             backend: BackendChoice::Builtin,
             resume: false,
             lenient: false,
+            stb: true,
         }
     }
 }
@@ -518,7 +522,12 @@ fn finish_run(
 
     // --- metrics.json (the same code as `scenesmith eval`; STB needs the bridge) ---
     let metrics = timed(timings, "metrics", || {
-        eval::evaluate(&state, pool.as_ref(), &EvalOptions::default())
+        let defaults = EvalOptions::default();
+        let eval_opts = EvalOptions {
+            stability: defaults.stability.filter(|_| opts.stb),
+            ..defaults
+        };
+        eval::evaluate(&state, pool.as_ref(), &eval_opts)
     })?;
     eval::write_metrics(staging.path(), &metrics)?;
     // --- end of metrics ---

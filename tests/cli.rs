@@ -161,6 +161,7 @@ fn unwritable_output_is_a_clear_error() {
             "a kitchen with a table",
             "--out",
             out.to_str().unwrap(),
+            "--no-stb",
         ],
         &[],
     );
@@ -210,6 +211,7 @@ fn missing_bridge_is_a_clear_error_and_writes_nothing() {
             "a kitchen with a table",
             "--out",
             out.to_str().unwrap(),
+            "--no-stb",
         ],
         &[("SCENESMITH_PYTHON", "/nonexistent/python")],
     );
@@ -233,11 +235,20 @@ fn bridge_killed_mid_request_keeps_previous_scene() {
             "a kitchen with a table",
             "--out",
             out.to_str().unwrap(),
+            "--no-stb",
         ],
         &[],
     );
     assert!(first.status.success(), "{}", text(&first));
     let before = read(&out.join("scene.json"));
+    // --no-stb: metrics without the stability simulations, everything else as usual.
+    let metrics: serde_json::Value =
+        serde_json::from_slice(&read(&out.join("metrics.json"))).unwrap();
+    assert!(
+        metrics["stb"].is_null() && metrics["stb_point"].is_null(),
+        "{metrics}"
+    );
+    assert_eq!(metrics["col"]["percent"].as_f64(), Some(0.0));
 
     // The bridge is SIGKILLed on every collision_report: one restart, one retry, then a clear
     // error; the previous scene is untouched and no staging directory is left behind.
@@ -247,6 +258,7 @@ fn bridge_killed_mid_request_keeps_previous_scene() {
             "an office with a shelf and books",
             "--out",
             out.to_str().unwrap(),
+            "--no-stb",
         ],
         &[("SCENESMITH_BRIDGE_CRASH_ON", "collision_report")],
     );
@@ -269,6 +281,7 @@ fn bridge_killed_mid_request_keeps_previous_scene() {
             "an office with a shelf and books",
             "--out",
             out.to_str().unwrap(),
+            "--no-stb",
         ],
         &[
             ("SCENESMITH_BRIDGE_CRASH_ON", "collision_report"),
@@ -290,6 +303,7 @@ fn check_fails_on_a_scene_with_penetration() {
             "a kitchen with a table and four chairs",
             "--out",
             out.to_str().unwrap(),
+            "--no-stb",
         ],
         &[],
     );
@@ -368,7 +382,13 @@ fn failed_run_resumes_from_its_checkpoints() {
     let prompt = "A kitchen with a table, four chairs, plates and mugs, and a shelf with books";
     let out = root.path().join("a/scene");
     let g = scenesmith(
-        &["generate", prompt, "--out", out.to_str().unwrap()],
+        &[
+            "generate",
+            prompt,
+            "--out",
+            out.to_str().unwrap(),
+            "--no-stb",
+        ],
         &[("SCENESMITH_BRIDGE_CRASH_ON", "collision_report")],
     );
     assert_eq!(g.status.code(), Some(1), "{}", text(&g));
@@ -385,6 +405,7 @@ fn failed_run_resumes_from_its_checkpoints() {
             "--out",
             out.to_str().unwrap(),
             "--resume",
+            "--no-stb",
         ],
         &[("SCENESMITH_LOG", "info")],
     );
@@ -397,7 +418,16 @@ fn failed_run_resumes_from_its_checkpoints() {
     );
 
     let fresh = root.path().join("b/scene");
-    let f = scenesmith(&["generate", prompt, "--out", fresh.to_str().unwrap()], &[]);
+    let f = scenesmith(
+        &[
+            "generate",
+            prompt,
+            "--out",
+            fresh.to_str().unwrap(),
+            "--no-stb",
+        ],
+        &[],
+    );
     assert!(f.status.success(), "{}", text(&f));
     assert_eq!(
         read(&out.join("scene.json")),
