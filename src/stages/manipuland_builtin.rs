@@ -152,15 +152,7 @@ impl BuiltinManipulandDesigner {
                         still.push(key);
                         continue;
                     }
-                    let placed = lay_flat_options(&want.noun, lay_flat_first).into_iter().any(|flat| {
-                        cx.call(
-                            state,
-                            Role::Designer,
-                            "place_on_surface",
-                            json!({"description": want.description, "surface": key, "lay_flat": flat}),
-                        )
-                        .is_ok()
-                    });
+                    let placed = Self::place_one(state, cx, want, &key, lay_flat_first);
                     if placed {
                         need -= 1;
                         still.push(key);
@@ -169,6 +161,28 @@ impl BuiltinManipulandDesigner {
                 live = still;
             }
         }
+    }
+
+    /// One `want` on surface `key`, standing or lying flat (in the order `lay_flat_first`
+    /// asks) where the object may lie flat; whether it was placed.
+    fn place_one(
+        state: &mut StageState,
+        cx: &mut AgentCx<'_, StageState>,
+        want: &Want,
+        key: &str,
+        lay_flat_first: bool,
+    ) -> bool {
+        lay_flat_options(&want.noun, lay_flat_first)
+            .into_iter()
+            .any(|flat| {
+                cx.call(
+                    state,
+                    Role::Designer,
+                    "place_on_surface",
+                    json!({"description": want.description, "surface": key, "lay_flat": flat}),
+                )
+                .is_ok()
+            })
     }
 
     /// Puts `need` of `want` away on the enclosed surfaces `keys` (drawers, shelves behind
@@ -202,15 +216,7 @@ impl BuiltinManipulandDesigner {
                     )
                     .map_or(0, |v| v["placed"].as_array().map_or(0, |a| a.len() as u32))
                 } else {
-                    let fits = lay_flat_options(&want.noun, false).into_iter().any(|flat| {
-                        cx.call(
-                            state,
-                            Role::Designer,
-                            "place_on_surface",
-                            json!({"description": want.description, "surface": key, "lay_flat": flat}),
-                        )
-                        .is_ok()
-                    });
+                    let fits = Self::place_one(state, cx, want, &key, false);
                     u32::from(fits)
                 };
                 if placed > 0 {
