@@ -25,16 +25,16 @@ struct Coverage {
 }
 
 const COVERAGE: Coverage = Coverage {
-    top: 0.2,
-    shelf: 0.3,
+    top: 0.3,
+    shelf: 0.4,
     seat: 0.1,
-    enclosed: 0.3,
+    enclosed: 0.4,
 };
 
 /// Most default small objects one piece gets at the usual density, scaled like the coverage
 /// (a long bookcase is not filled with 150 books: each one is a body the physics steps have to
 /// carry).
-pub const MAX_PER_PIECE: u32 = 24;
+pub const MAX_PER_PIECE: u32 = 36;
 
 /// Footprint of an object whose size nobody knows, m².
 const UNKNOWN_FOOTPRINT: f64 = 0.02;
@@ -56,6 +56,9 @@ pub fn clutter_area(rec: &AssetRecord, density: Option<Density>) -> (f64, f64) {
             continue;
         }
         let share = match s.id.as_str() {
+            // A wet basin (a bathtub's, a sink's) is kept clear: it may take what the rest of
+            // the piece cannot hold, but the usual clutter is not sized to it.
+            "basin" => continue,
             "seat" | "chaise" => COVERAGE.seat,
             id if id.starts_with("shelf") || id.starts_with("upper") || id.starts_with("step") => {
                 COVERAGE.shelf
@@ -67,8 +70,8 @@ pub fn clutter_area(rec: &AssetRecord, density: Option<Density>) -> (f64, f64) {
     (open, enclosed)
 }
 
-/// Typical footprint of a small object, m² (upright, as it is placed first).
-fn footprint(noun: &str) -> f64 {
+/// Typical footprint of a thing, m² (upright, as it is placed first).
+pub(crate) fn footprint(noun: &str) -> f64 {
     StageState::category_of(noun)
         .and_then(crate::assets::procedural::prior)
         .map_or(UNKNOWN_FOOTPRINT, |p| {
@@ -87,7 +90,7 @@ fn count_for(area: f64, nouns: &[&str]) -> u32 {
 
 /// Default small objects of one room at the usual density: every one is a body that
 /// settling and the stability check simulate, and a room past this costs minutes.
-pub const ROOM_DEFAULTS: u32 = 40;
+pub const ROOM_DEFAULTS: u32 = 80;
 
 /// How many default small objects one room may get at `density`: `ROOM_DEFAULTS` scaled like
 /// the coverage.
@@ -217,6 +220,21 @@ mod tests {
         .map(|w| w.count)
         .sum();
         assert!((20..=MAX_PER_PIECE).contains(&books), "{books}");
+    }
+
+    #[test]
+    fn a_bathtub_is_filled_on_its_rim_not_in_its_basin() {
+        let tub = record("bathtub");
+        let rim: f64 = tub
+            .surfaces
+            .iter()
+            .filter(|s| s.id != "basin")
+            .map(|s| s.size[0] * s.size[1])
+            .sum();
+        assert!(tub.surfaces.iter().any(|s| s.id == "basin"));
+        let (open, enclosed) = clutter_area(&tub, None);
+        assert!((open - COVERAGE.top * rim).abs() < 1e-9, "{open} vs rim {rim}");
+        assert_eq!(enclosed, 0.0);
     }
 
     #[test]

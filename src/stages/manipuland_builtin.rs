@@ -30,13 +30,17 @@ fn count_on(state: &StageState, entity: &str, want: &Want) -> u32 {
 
 /// The entity's surface keys in two tiers, each bottom-up: the open ones (tops, open shelves),
 /// then the enclosed ones (behind doors, in drawers), which get what the open ones cannot
-/// hold: a kitchen counter's appliances stand on its top, not in its cupboards.
+/// hold: a kitchen counter's appliances stand on its top, not in its cupboards. A wet basin
+/// comes last in its tier: shampoo stands on a bathtub's rim, not in the tub.
 fn surface_tiers(state: &StageState, entity: &str) -> [Vec<String>; 2] {
-    let mut list: Vec<(bool, f64, String)> = surfaces(state, Some(entity))
+    let mut list: Vec<(bool, (bool, f64), String)> = surfaces(state, Some(entity))
         .iter()
-        .map(|s| (s.enclosed(state), s.surface.center[2], s.key()))
+        .map(|s| {
+            let basin = s.surface.id == "basin";
+            (s.enclosed(state), (basin, s.surface.center[2]), s.key())
+        })
         .collect();
-    list.sort_by(|a, b| a.1.total_cmp(&b.1));
+    list.sort_by(|a, b| a.1.0.cmp(&b.1.0).then(a.1.1.total_cmp(&b.1.1)));
     let tier = |enclosed: bool| {
         list.iter()
             .filter(|(e, _, _)| *e == enclosed)

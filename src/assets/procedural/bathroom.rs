@@ -255,8 +255,9 @@ fn shower(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     b.add_box([0.0, ry - 0.015, 1.05], [0.12, 0.03, 0.06], METAL)?;
     single(
         b.finish()?,
+        // The tray is a wet basin like a tub's: kept clear by the usual clutter.
         vec![surface(
-            "floor",
+            "basin",
             "body",
             [0.0, 0.0, 0.04],
             [w - 2.0 * lip, d - 0.1],

@@ -12,6 +12,10 @@ use super::{
 use crate::knowledge::{KbItem, Place};
 use crate::prompt::{Density, Mention, Support};
 
+/// Largest footprint of an optional piece that still comes along when the prompt lists its
+/// furniture, m² (a bookcase 0.3, a nightstand 0.2; a desk 0.7 and an armchair 0.6 do not).
+const SMALL_PIECE_M2: f64 = 0.45;
+
 impl Builder<'_> {
     /// "A table set for 4 people": seats per setting when the prompt names none, default
     /// setting items when it names none.
@@ -159,8 +163,15 @@ impl Builder<'_> {
         let Some(rt) = self.rt else { return };
         let t = fill_factor(self.density);
         let explicit_floor = self.plan.furniture.iter().filter(|w| w.explicit).count();
-        // A prompt that lists its furniture gets the essentials, not every option.
-        let t_optional = if explicit_floor >= 3 { 0.0 } else { t };
+        // A prompt that lists its furniture gets the essentials and the room's small pieces
+        // (shelves, side tables, plants, baskets, rugs: what holds and dresses the room), not
+        // every large option (another sofa, a desk).
+        let lists_furniture = explicit_floor >= 3;
+        let lex = self.lex;
+        let small_piece = |noun: &str| {
+            lex.lookup(noun).is_some_and(|e| e.thin)
+                || super::super::clutter::footprint(noun) <= SMALL_PIECE_M2
+        };
         let scale = self
             .reading
             .rooms
@@ -175,7 +186,11 @@ impl Builder<'_> {
                 b.floor_of.insert(item.noun.clone(), by);
                 return;
             }
-            let tt = if item.count[0] == 0 { t_optional } else { t };
+            let tt = if item.count[0] > 0 || !lists_furniture || small_piece(&item.noun) {
+                t
+            } else {
+                0.0
+            };
             let mut count = pick(item.count, tt);
             if matches!(item.place, Some(Place::Grid | Place::RowAlongWall)) && scale != 1.0 {
                 count = ((count as f64) * scale).round() as u32;
