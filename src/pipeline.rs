@@ -474,8 +474,20 @@ fn finish_run(
     // --- physics post-processing (projection, settling, fallen-object removal) ---
     // Without the Drake check (`--no-check`) only the native projections run.
     let pool = opts.drake_check.then(BridgePool::from_env);
+    // What the prompt asked for: an asked-for object post-processing removes is placed again.
+    let asked: Vec<(String, u32)> = report
+        .plan_coverage
+        .iter()
+        .map(|(noun, wanted, _)| (noun.clone(), *wanted))
+        .collect();
     let post_process = timed(timings, "post_process", || {
-        postprocess::post_process(&mut state, pool.as_ref(), &PostProcessOptions::default())
+        postprocess::post_process_placing_again(
+            &mut state,
+            pool.as_ref(),
+            &PostProcessOptions::default(),
+            &asked,
+            &crate::stages::manipuland::spot_again,
+        )
     })?;
     // --- end of physics post-processing ---
 

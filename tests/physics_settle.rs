@@ -8,7 +8,9 @@ use std::time::Duration;
 use physics_util::*;
 use scenesmith::assets::procedural::AssetRequest;
 use scenesmith::formats::scene_dir::write_scene_dir;
-use scenesmith::physics::postprocess::{PostProcessOptions, post_process};
+use scenesmith::physics::postprocess::{
+    PostProcessOptions, post_process, post_process_placing_again,
+};
 use scenesmith::physics::removal::tilt;
 use scenesmith::physics::settle::{SettleOptions, parse_result, request_args};
 use scenesmith::scene::{ObjectKind, Pose};
@@ -153,6 +155,79 @@ fn what_cannot_stand_falls_and_is_removed_with_a_reason() {
         "{cube_now:?} vs {cube_before:?}"
     );
     assert!(tilt(&state.scene.object(&table).unwrap().world_from_object) < 0.01);
+}
+
+#[test]
+fn an_asked_for_object_that_fell_is_placed_again() {
+    // The stick leaning out over the table's edge falls off; the prompt asked for two blocks
+    // (both test assets are blocks), so it is stood up again at a free spot of the table,
+    // where it rests.
+    let (mut state, table, top) = room_with_table();
+    let stick = block("stick", Shape::Box([0.04, 0.04, 0.4]), "wood");
+    let cube = block("cube", Shape::Box([0.1, 0.1, 0.1]), "wood");
+    let table_half_x = {
+        let b = state.scene.assets[&state.scene.object(&table).unwrap().asset].bounds;
+        b[1][0]
+    };
+    let stick_id = place(
+        &mut state,
+        &stick,
+        ObjectKind::Manipuland,
+        Pose::from_xyz_rpy(
+            [2.0 + table_half_x - 0.05, 2.0, top + 0.001],
+            [0.0, 0.45, 0.0],
+        ),
+        on(&table),
+    );
+    let cube_id = place(
+        &mut state,
+        &cube,
+        ObjectKind::Manipuland,
+        Pose::from_xyz_yaw(2.0, 2.0, top + 0.001, 0.0),
+        on(&table),
+    );
+    let category = state.scene.object(&stick_id).unwrap().category.clone();
+    let pool = pool(1);
+    let report = post_process_placing_again(
+        &mut state,
+        Some(&pool),
+        &PostProcessOptions::default(),
+        &[(category.clone(), 2)],
+        &scenesmith::stages::manipuland::spot_again,
+    )
+    .unwrap();
+    assert_eq!(report.placed_again, vec![stick_id.clone()]);
+    assert!(state.scene.removed.iter().all(|r| r.object != stick_id));
+    let again = &state.scene.placed_again[0];
+    assert_eq!(again.object, stick_id);
+    assert!(again.removed_because.contains("fell off"), "{again:?}");
+    assert!(again.surface.starts_with(&table), "{again:?}");
+    let stood = state.scene.object(&stick_id).expect("in the scene again");
+    assert!(tilt(&stood.world_from_object) < 0.05, "upright");
+    let p = stood.world_from_object.translation();
+    assert!(
+        (p.z - top).abs() < 3e-3,
+        "bottom at {} on a top at {top}",
+        p.z
+    );
+    assert!(p.x.abs() < 2.0 + table_half_x, "over the table");
+    // The cube it might have landed on is where it was.
+    assert!((translation(&state, &cube_id) - nalgebra::Vector3::new(2.0, 2.0, top)).norm() < 5e-3);
+    // Without the request it stays removed.
+    let (mut plain, table2, _) = room_with_table();
+    let lost = place(
+        &mut plain,
+        &stick,
+        ObjectKind::Manipuland,
+        Pose::from_xyz_rpy(
+            [2.0 + table_half_x - 0.05, 2.0, top + 0.001],
+            [0.0, 0.45, 0.0],
+        ),
+        on(&table2),
+    );
+    let report = post_process(&mut plain, Some(&pool), &PostProcessOptions::default()).unwrap();
+    assert!(report.placed_again.is_empty());
+    assert!(plain.scene.object(&lost).is_none());
 }
 
 #[test]

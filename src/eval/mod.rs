@@ -162,6 +162,10 @@ pub struct Removed {
     /// Categories the prompt asked for whose count the removals left short, with how many
     /// of each were removed ("mug": 1).
     pub lost: BTreeMap<String, usize>,
+    /// Asked-for objects post-processing removed and then placed again elsewhere (counted in
+    /// `placed`, not in `removed`; `scene.json` says where, and why they were moved).
+    #[serde(default)]
+    pub placed_again: usize,
 }
 
 /// COL.
@@ -281,6 +285,7 @@ fn removed(state: &SceneState, coverage: &PlanCoverage) -> Removed {
     }
     Removed {
         placed,
+        placed_again: state.scene.placed_again.len(),
         removed: removals.len(),
         percent: if placed == 0 {
             0.0
@@ -503,10 +508,18 @@ pub fn table(m: &Metrics) -> String {
     rows.push((
         "removed".into(),
         format!(
-            "{} of {} placed objects ({:.1} %) removed by post-processing{}",
+            "{} of {} placed objects ({:.1} %) removed by post-processing{}{}",
             m.removed.removed,
             m.removed.placed,
             m.removed.percent,
+            if m.removed.placed_again == 0 {
+                String::new()
+            } else {
+                format!(
+                    "; {} asked-for objects it removed placed again elsewhere",
+                    m.removed.placed_again
+                )
+            },
             if m.removed.lost.is_empty() {
                 String::new()
             } else {

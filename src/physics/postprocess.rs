@@ -13,6 +13,9 @@
 //! skipped without a pool. Objects that still penetrate deeper than
 //! `PostProcessOptions::remove_penetrating_above_m` at the very end are removed, so what is
 //! written is collision-free. Every removal is recorded in `scene.removed` with its reason.
+//! An object the prompt asked for is not lost that way if it can be helped
+//! ([`post_process_placing_again`]): it is placed again on another surface, settled there alone
+//! with everything around it held, and kept when it rests (`scene.placed_again`).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::time::Instant;
@@ -29,8 +32,8 @@ use super::projection::{
 use super::removal::{RemovalRules, furniture_verdict, manipuland_verdict};
 use super::settle::{SettleOptions, SettleResult, parse_result, request_args};
 use super::workspace::{Role, Workspace};
-use crate::scene::{ObjectKind, Pose, Scene, Support};
-use crate::stages::SceneState;
+use crate::scene::{ObjectKind, PlacedAgain, Pose, Scene, SceneObject, Support};
+use crate::stages::{SceneState, StageState};
 
 /// Options of [`post_process`].
 #[derive(Debug, Clone)]
@@ -108,6 +111,8 @@ pub struct PostProcessReport {
     pub removed_penetrating: Vec<String>,
     /// Subsets settled again after those removals.
     pub resettled: Vec<SubsetReport>,
+    /// Asked-for objects removed above and placed again elsewhere (ids).
+    pub placed_again: Vec<String>,
     /// Wall time, seconds (not written into scene files).
     #[serde(skip)]
     pub seconds: f64,
@@ -120,7 +125,37 @@ pub fn post_process(
     pool: Option<&BridgePool>,
     opts: &PostProcessOptions,
 ) -> Result<PostProcessReport, PhysicsError> {
+    post_process_placing_again(state, pool, opts, &[], &|_, _, _| None)
+}
+
+/// Proposes another place for an object post-processing removed, avoiding the surfaces
+/// already tried (`parent/surface` keys): the object posed there, and the surface's key.
+pub type Spotter<'a> =
+    &'a dyn Fn(&SceneState, &SceneObject, &[String]) -> Option<(SceneObject, String)>;
+
+/// Most places an asked-for object is tried at after post-processing removed it.
+pub const PLACE_AGAIN_ATTEMPTS: u32 = 3;
+
+/// [`post_process`], then the small objects it removed that `asked` (noun, count wanted) is
+/// now short of are placed again: `spot` proposes a place, the object is settled there alone
+/// (its support and neighbours welded) and stays when it rests by the removal rules and
+/// penetrates nothing; at most [`PLACE_AGAIN_ATTEMPTS`] places each. Needs a pool.
+pub fn post_process_placing_again(
+    state: &mut SceneState,
+    pool: Option<&BridgePool>,
+    opts: &PostProcessOptions,
+    asked: &[(String, u32)],
+    spot: Spotter,
+) -> Result<PostProcessReport, PhysicsError> {
     let t0 = Instant::now();
+    let first_removal = state.scene.removed.len();
+    let before: BTreeMap<String, SceneObject> = state
+        .scene
+        .objects
+        .iter()
+        .filter(|o| is_free_manipuland(o))
+        .map(|o| (o.id.clone(), o.clone()))
+        .collect();
     let pool = pool.filter(|_| opts.settle_enabled);
     let mut workspace = match pool {
         Some(_) => Some(Workspace::new(state)?),
@@ -148,14 +183,138 @@ pub fn post_process(
             .collect();
         resettled = resettle(state, pool, ws, &touched, &opts.settle)?;
     }
+    let placed_again = match (pool, workspace.as_mut()) {
+        (Some(pool), Some(ws)) if !asked.is_empty() => {
+            let lost = Lost {
+                before: &before,
+                first_removal,
+                asked,
+            };
+            place_again(state, pool, ws, opts, &lost, spot)?
+        }
+        _ => Vec::new(),
+    };
     state.prune_assets();
     Ok(PostProcessReport {
         furniture,
         manipuland,
         removed_penetrating,
         resettled,
+        placed_again,
         seconds: t0.elapsed().as_secs_f64(),
     })
+}
+
+/// What post-processing took that the prompt asked for: the small objects as they were before
+/// it (`before`), the removals it recorded (from `first_removal` on), the asked-for counts.
+struct Lost<'a> {
+    before: &'a BTreeMap<String, SceneObject>,
+    first_removal: usize,
+    asked: &'a [(String, u32)],
+}
+
+impl Lost<'_> {
+    /// Whether the scene has fewer objects that `category` counts for than some asked-for noun
+    /// naming it wants.
+    fn short_of(&self, scene: &Scene, category: &str) -> bool {
+        self.asked.iter().any(|(noun, wanted)| {
+            StageState::names(noun, category)
+                && (scene
+                    .objects
+                    .iter()
+                    .filter(|o| StageState::is(scene, noun, o))
+                    .count() as u32)
+                    < *wanted
+        })
+    }
+}
+
+fn place_again(
+    state: &mut SceneState,
+    pool: &BridgePool,
+    ws: &mut Workspace,
+    opts: &PostProcessOptions,
+    lost: &Lost,
+    spot: Spotter,
+) -> Result<Vec<String>, PhysicsError> {
+    let mut done = Vec::new();
+    let removals =
+        state.scene.removed[lost.first_removal.min(state.scene.removed.len())..].to_vec();
+    for r in removals {
+        let Some(obj) = lost.before.get(&r.object) else {
+            continue;
+        };
+        if !lost.short_of(&state.scene, &r.category) || !state.assets.contains_key(&obj.asset) {
+            continue;
+        }
+        // Its own surface stays a candidate: another pose there (upright, at a free spot) is
+        // often all it takes.
+        let mut tried: Vec<String> = Vec::new();
+        for attempt in 1..=PLACE_AGAIN_ATTEMPTS {
+            let Some((placed, key)) = spot(state, obj, &tried) else {
+                break;
+            };
+            tried.push(key.clone());
+            state.scene.objects.push(placed.clone());
+            if settles_alone(state, pool, ws, opts, &placed)? {
+                state.scene.removed.retain(|x| x.object != r.object);
+                state.scene.placed_again.push(PlacedAgain {
+                    object: r.object.clone(),
+                    category: r.category.clone(),
+                    removed_because: r.reason.clone(),
+                    surface: key,
+                    attempts: attempt,
+                });
+                done.push(r.object.clone());
+                break;
+            }
+            state.scene.objects.retain(|o| o.id != placed.id);
+        }
+    }
+    Ok(done)
+}
+
+/// Settles `obj` (already in the scene) with its supporting entity and the entity's other
+/// small objects welded; keeps the settled pose and returns true when it rests by the
+/// removal rules and penetrates nothing deeper than the end-of-run threshold.
+fn settles_alone(
+    state: &mut SceneState,
+    pool: &BridgePool,
+    ws: &mut Workspace,
+    opts: &PostProcessOptions,
+    obj: &SceneObject,
+) -> Result<bool, PhysicsError> {
+    let entity = supporting_entity(&state.scene, &obj.id);
+    let mut members: BTreeMap<String, Role> =
+        ids_where(&state.scene, |o| o.kind == ObjectKind::Architecture)
+            .into_iter()
+            .map(|a| (a, Role::Welded))
+            .collect();
+    members.insert(entity.clone(), Role::Welded);
+    for o in state.scene.objects.iter().filter(|o| is_free_manipuland(o)) {
+        if o.id != obj.id && supporting_entity(&state.scene, &o.id) == entity {
+            members.insert(o.id.clone(), Role::Welded);
+        }
+    }
+    members.insert(obj.id.clone(), Role::Free);
+    let results = settle_subsets(state, pool, ws, &[(entity, members)], &opts.settle)?;
+    let settled = results
+        .first()
+        .and_then(|r| settled_pose(state, r, &obj.id));
+    let (Some(p), Some(asset)) = (settled, state.assets.get(&obj.asset)) else {
+        return Ok(false);
+    };
+    if manipuland_verdict(asset, obj, &obj.world_from_object, &p, &opts.rules).is_some() {
+        return Ok(false);
+    }
+    if let Some(o) = state.scene.objects.iter_mut().find(|o| o.id == obj.id) {
+        o.world_from_object = p;
+    }
+    let threshold = opts.remove_penetrating_above_m.unwrap_or(1e-3);
+    let posed = posed_objects(&state.scene, &state.assets);
+    Ok(!penetrating_pairs(&posed, threshold)
+        .iter()
+        .any(|pair| pair.a == obj.id || pair.b == obj.id))
 }
 
 /// Ids of every object resting (directly or through others) on `id`.

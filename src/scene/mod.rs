@@ -35,6 +35,10 @@ pub struct Scene {
     /// Objects taken out by a stage or post-processing, with the reason.
     #[serde(default)]
     pub removed: Vec<Removal>,
+    /// Objects the prompt asked for that post-processing removed and then placed again
+    /// elsewhere (they are in `objects`, not in `removed`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub placed_again: Vec<PlacedAgain>,
     /// Id counters, so edits after a reload never reuse an id.
     #[serde(default)]
     pub ids: IdAllocator,
@@ -349,6 +353,21 @@ pub struct Removal {
     pub reason: String,
 }
 
+/// An asked-for object that post-processing removed, placed again on another surface.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+pub struct PlacedAgain {
+    /// The object's id (unchanged).
+    pub object: String,
+    /// Its category.
+    pub category: String,
+    /// Why it was removed from where the stage put it.
+    pub removed_because: String,
+    /// `parent/surface` where it rests now.
+    pub surface: String,
+    /// Places tried, this one included.
+    pub attempts: u32,
+}
+
 /// What can be wrong with a scene as a whole.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
@@ -400,6 +419,7 @@ impl Scene {
             objects: Vec::new(),
             assets: BTreeMap::new(),
             removed: Vec::new(),
+            placed_again: Vec::new(),
             ids: IdAllocator::new(),
             checks: None,
             llm_usage: BTreeMap::new(),

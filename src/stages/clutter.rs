@@ -233,7 +233,10 @@ mod tests {
             .sum();
         assert!(tub.surfaces.iter().any(|s| s.id == "basin"));
         let (open, enclosed) = clutter_area(&tub, None);
-        assert!((open - COVERAGE.top * rim).abs() < 1e-9, "{open} vs rim {rim}");
+        assert!(
+            (open - COVERAGE.top * rim).abs() < 1e-9,
+            "{open} vs rim {rim}"
+        );
         assert_eq!(enclosed, 0.0);
     }
 

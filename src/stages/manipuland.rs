@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 
 use super::common::{self, ObjectInfo, object_info};
 use super::room::RoomFrame;
-use super::{RoutedAsset, StageState};
+use super::{RoutedAsset, SceneState, StageState};
 use crate::agents::{Access, CategorySpec, ToolError, Toolbox};
 use crate::assets::Asset;
 use crate::physics::collision::{object_penetration, posed_object};
@@ -148,16 +148,15 @@ impl Slot {
 }
 
 /// Footprints of the objects already resting (directly) on a surface.
-fn occupied(state: &StageState, s: &SurfaceRef) -> Vec<Slot> {
+fn occupied(scene: &SceneState, s: &SurfaceRef) -> Vec<Slot> {
     let surface_from_world = s.world_from_surface().inverse();
-    state
-        .scene
+    scene
         .scene
         .objects
         .iter()
         .filter(|o| matches!(&o.support, Support::Object { parent, surface } if *parent == s.parent.id && *surface == s.surface.id))
         .filter_map(|o| {
-            let rec = state.scene.scene.assets.get(&o.asset)?;
+            let rec = scene.scene.assets.get(&o.asset)?;
             let local = surface_from_world.compose(&o.world_from_object);
             let (lo, hi) = rotated_bounds(rec, &local.rotation());
             let t = local.translation();
@@ -175,11 +174,11 @@ fn occupied(state: &StageState, s: &SurfaceRef) -> Vec<Slot> {
 /// (a sideboard's partitions between its bays, a sink's basin over the shelf below), as
 /// footprints clipped to the surface: an item placed across one would stand in the wood.
 /// Furniture only; a container's cavity has its own fill rules.
-fn parent_intrusions(state: &StageState, s: &SurfaceRef) -> Vec<Slot> {
+fn parent_intrusions(scene: &SceneState, s: &SurfaceRef) -> Vec<Slot> {
     if s.parent.kind != ObjectKind::Furniture || is_cavity(s) {
         return Vec::new();
     }
-    let Some(asset) = state.scene.assets.get(&s.parent.asset) else {
+    let Some(asset) = scene.assets.get(&s.parent.asset) else {
         return Vec::new();
     };
     intrusions(asset, &s.surface, &s.parent.joint_positions)
@@ -284,6 +283,18 @@ fn fit(
     at: Option<(f64, f64)>,
     extra: &[Slot],
 ) -> Result<(Pose, Slot), String> {
+    fit_in(&state.scene, s, rec, rot, at, extra)
+}
+
+/// [`fit`] on a scene outside a stage (placing an object again after post-processing).
+fn fit_in(
+    scene: &SceneState,
+    s: &SurfaceRef,
+    rec: &AssetRecord,
+    rot: &UnitQuaternion<f64>,
+    at: Option<(f64, f64)>,
+    extra: &[Slot],
+) -> Result<(Pose, Slot), String> {
     let (lo, hi) = rotated_bounds(rec, rot);
     let (hu, hv, h) = ((hi[0] - lo[0]) / 2.0, (hi[1] - lo[1]) / 2.0, hi[2] - lo[2]);
     if h > s.surface.clearance - 0.003 {
@@ -305,8 +316,8 @@ fn fit(
             2.0 * sv
         ));
     }
-    let mut taken = occupied(state, s);
-    taken.extend(parent_intrusions(state, s));
+    let mut taken = occupied(scene, s);
+    taken.extend(parent_intrusions(scene, s));
     taken.extend_from_slice(extra);
     let make = |u: f64, v: f64| Slot { u, v, hu, hv };
     let free = |slot: &Slot| {
@@ -356,6 +367,71 @@ fn fit(
         *rot,
     ));
     Ok((s.world_from_surface().compose(&local), slot))
+}
+
+/// Another place for `obj`, a small object that post-processing removed: the first free spot,
+/// upright, on an open surface of its room that is not in `tried` (`parent/surface` keys).
+/// Other surfaces of its own parent come first, then those of pieces of the same category,
+/// then the rest, largest first; wet basins, cavities and the surfaces behind doors are left
+/// out. Returns the object posed there and the surface's key.
+pub fn spot_again(
+    scene: &SceneState,
+    obj: &SceneObject,
+    tried: &[String],
+) -> Option<(SceneObject, String)> {
+    let rec = scene.scene.assets.get(&obj.asset)?;
+    let (old_parent, old_category) = match &obj.support {
+        Support::Object { parent, .. } => (
+            parent.as_str(),
+            scene.scene.object(parent).map(|p| p.category.as_str()),
+        ),
+        _ => ("", None),
+    };
+    let mut candidates: Vec<(u8, f64, SurfaceRef)> = Vec::new();
+    for o in scene.scene.objects.iter().filter(|o| {
+        o.room == obj.room
+            && o.id != obj.id
+            && !matches!(o.kind, ObjectKind::Manipuland | ObjectKind::Architecture)
+    }) {
+        let Some(parent_rec) = scene.scene.assets.get(&o.asset) else {
+            continue;
+        };
+        for s in &parent_rec.surfaces {
+            let sref = SurfaceRef {
+                parent: o.clone(),
+                surface: s.clone(),
+            };
+            if s.id == "basin"
+                || is_cavity(&sref)
+                || super::clutter::is_enclosed(parent_rec, s)
+                || tried.contains(&sref.key())
+            {
+                continue;
+            }
+            let rank = if o.id == old_parent {
+                0
+            } else if Some(o.category.as_str()) == old_category {
+                1
+            } else {
+                2
+            };
+            candidates.push((rank, -s.size[0] * s.size[1], sref));
+        }
+    }
+    candidates.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    let rot = item_rotation(0.0, false);
+    candidates.into_iter().find_map(|(_, _, s)| {
+        let (pose, _) = fit_in(scene, &s, rec, &rot, None, &[]).ok()?;
+        let placed = SceneObject {
+            world_from_object: pose,
+            support: Support::Object {
+                parent: s.parent.id.clone(),
+                surface: s.surface.id.clone(),
+            },
+            ..obj.clone()
+        };
+        Some((placed, s.key()))
+    })
 }
 
 /// Adds a manipuland resting on `support`.
@@ -1063,7 +1139,7 @@ fn observe_surfaces(
     Ok(list
         .iter()
         .map(|s| {
-            let slots = occupied(state, s);
+            let slots = occupied(&state.scene, s);
             let covered: f64 = slots.iter().map(|sl| 4.0 * sl.hu * sl.hv).sum();
             let area = s.surface.size[0] * s.surface.size[1];
             let mut objects: Vec<String> = state
