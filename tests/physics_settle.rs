@@ -32,6 +32,22 @@ fn room_with_table() -> (SceneState, String, f64) {
     (state, id, top)
 }
 
+/// Half the x extent of the table `table`.
+fn table_half_x(state: &SceneState, table: &str) -> f64 {
+    state.scene.assets[&state.scene.object(table).unwrap().asset].bounds[1][0]
+}
+
+/// A tall stick (0.04 x 0.04 x 0.4 m) leaning out over the +x edge of the table at (2, 2):
+/// it cannot stand and topples to the floor. Returns its id.
+fn leaning_stick(state: &mut SceneState, table: &str, top: f64) -> String {
+    let stick = block("stick", Shape::Box([0.04, 0.04, 0.4]), "wood");
+    let leaning = Pose::from_xyz_rpy(
+        [2.0 + table_half_x(state, table) - 0.05, 2.0, top + 0.001],
+        [0.0, 0.45, 0.0],
+    );
+    place(state, &stick, ObjectKind::Manipuland, leaning, on(table))
+}
+
 fn translation(state: &SceneState, id: &str) -> nalgebra::Vector3<f64> {
     state
         .scene
@@ -81,23 +97,8 @@ fn what_cannot_stand_falls_and_is_removed_with_a_reason() {
     let (mut state, table, top) = room_with_table();
     // A tall stick leaning out over the table's edge topples off onto the floor; a cube in the
     // middle of the table stays where it is.
-    let stick = block("stick", Shape::Box([0.04, 0.04, 0.4]), "wood");
     let cube = block("cube", Shape::Box([0.1, 0.1, 0.1]), "wood");
-    let table_half_x = {
-        let b = state.scene.assets[&state.scene.object(&table).unwrap().asset].bounds;
-        b[1][0]
-    };
-    let leaning = Pose::from_xyz_rpy(
-        [2.0 + table_half_x - 0.05, 2.0, top + 0.001],
-        [0.0, 0.45, 0.0],
-    );
-    let stick_id = place(
-        &mut state,
-        &stick,
-        ObjectKind::Manipuland,
-        leaning,
-        on(&table),
-    );
+    let stick_id = leaning_stick(&mut state, &table, top);
     let cube_id = place(
         &mut state,
         &cube,
@@ -163,22 +164,9 @@ fn an_asked_for_object_that_fell_is_placed_again() {
     // (both test assets are blocks), so it is stood up again at a free spot of the table,
     // where it rests.
     let (mut state, table, top) = room_with_table();
-    let stick = block("stick", Shape::Box([0.04, 0.04, 0.4]), "wood");
     let cube = block("cube", Shape::Box([0.1, 0.1, 0.1]), "wood");
-    let table_half_x = {
-        let b = state.scene.assets[&state.scene.object(&table).unwrap().asset].bounds;
-        b[1][0]
-    };
-    let stick_id = place(
-        &mut state,
-        &stick,
-        ObjectKind::Manipuland,
-        Pose::from_xyz_rpy(
-            [2.0 + table_half_x - 0.05, 2.0, top + 0.001],
-            [0.0, 0.45, 0.0],
-        ),
-        on(&table),
-    );
+    let stick_id = leaning_stick(&mut state, &table, top);
+    let half_x = table_half_x(&state, &table);
     let cube_id = place(
         &mut state,
         &cube,
@@ -210,21 +198,12 @@ fn an_asked_for_object_that_fell_is_placed_again() {
         "bottom at {} on a top at {top}",
         p.z
     );
-    assert!(p.x.abs() < 2.0 + table_half_x, "over the table");
+    assert!(p.x.abs() < 2.0 + half_x, "over the table");
     // The cube it might have landed on is where it was.
     assert!((translation(&state, &cube_id) - nalgebra::Vector3::new(2.0, 2.0, top)).norm() < 5e-3);
     // Without the request it stays removed.
-    let (mut plain, table2, _) = room_with_table();
-    let lost = place(
-        &mut plain,
-        &stick,
-        ObjectKind::Manipuland,
-        Pose::from_xyz_rpy(
-            [2.0 + table_half_x - 0.05, 2.0, top + 0.001],
-            [0.0, 0.45, 0.0],
-        ),
-        on(&table2),
-    );
+    let (mut plain, table2, top2) = room_with_table();
+    let lost = leaning_stick(&mut plain, &table2, top2);
     let report = post_process(&mut plain, Some(&pool), &PostProcessOptions::default()).unwrap();
     assert!(report.placed_again.is_empty());
     assert!(plain.scene.object(&lost).is_none());

@@ -149,11 +149,13 @@ pub fn post_process_placing_again(
 ) -> Result<PostProcessReport, PhysicsError> {
     let t0 = Instant::now();
     let first_removal = state.scene.removed.len();
+    // Copies of the small objects only when something was asked for (nothing to place
+    // again otherwise).
     let before: BTreeMap<String, SceneObject> = state
         .scene
         .objects
         .iter()
-        .filter(|o| is_free_manipuland(o))
+        .filter(|o| !asked.is_empty() && is_free_manipuland(o))
         .map(|o| (o.id.clone(), o.clone()))
         .collect();
     let pool = pool.filter(|_| opts.settle_enabled);
