@@ -80,3 +80,42 @@ fn a_minimalist_bedroom_has_less() {
     );
     assert!(minimal < usual, "minimalist {minimal}, usual {usual}");
 }
+
+#[test]
+fn a_bathroom_fills_its_counter_and_its_wall_cabinet() {
+    let (state, n) = small_objects(
+        "A bathroom with a bathtub, a vanity and a medicine cabinet.",
+        "dense_bathroom",
+    );
+    let scene = &state.scene;
+    let on = |kind: ObjectKind, surface_prefix: &str| {
+        scene
+            .objects
+            .iter()
+            .filter(|o| match &o.support {
+                Support::Object { parent, surface } => {
+                    surface.starts_with(surface_prefix)
+                        && scene.object(parent).is_some_and(|p| p.kind == kind)
+                }
+                _ => false,
+            })
+            .count()
+    };
+    assert!(n >= 20, "{n} small objects");
+    // A wall-mounted cabinet is a supporting entity like furniture.
+    assert!(
+        on(ObjectKind::Wall, "shelf") >= 1,
+        "nothing in the medicine cabinet"
+    );
+    // The counter beside the basin, not the wet basin, takes the toiletries.
+    assert!(on(ObjectKind::Furniture, "top_") >= 2);
+    // "toilet paper" is paper on a roll, never a second toilet.
+    assert!(
+        scene
+            .objects
+            .iter()
+            .filter(|o| o.category == "toilet")
+            .count()
+            <= 1
+    );
+}

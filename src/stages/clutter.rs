@@ -42,7 +42,8 @@ const UNKNOWN_FOOTPRINT: f64 = 0.02;
 /// Behind a door or in a drawer: a surface of a moving link (a drawer), or any surface but
 /// the top of an articulated piece (shelves behind its doors).
 pub fn is_enclosed(rec: &AssetRecord, s: &SurfaceRecord) -> bool {
-    s.link != rec.root_link || (!rec.joints.is_empty() && !matches!(s.id.as_str(), "top" | "basin"))
+    s.link != rec.root_link
+        || !(rec.joints.is_empty() || s.id.starts_with("top") || s.id == "basin")
 }
 
 /// Area the usual clutter covers on one piece, m²: `(open, enclosed)`.
@@ -238,6 +239,30 @@ mod tests {
             "{open} vs rim {rim}"
         );
         assert_eq!(enclosed, 0.0);
+    }
+
+    #[test]
+    fn a_vanity_counter_beside_its_basin_is_open_and_holds_a_mix() {
+        let vanity = record("vanity");
+        let tops: Vec<&SurfaceRecord> = vanity
+            .surfaces
+            .iter()
+            .filter(|s| s.id.starts_with("top"))
+            .collect();
+        assert_eq!(tops.len(), 2, "{:?}", vanity.surfaces);
+        assert!(tops.iter().all(|s| !is_enclosed(&vanity, s)));
+        assert!(clutter_area(&vanity, None).0 > 0.0);
+        // Nobody keeps half a counter of soap dispensers; a bookcase is mostly books.
+        let no_single = |_: &str| false;
+        let counter = split_counts(
+            8,
+            &["soap dispenser", "toothbrush", "lotion bottle", "towel"],
+            no_single,
+            1,
+        );
+        assert!(counter.iter().all(|(_, c)| *c == 2), "{counter:?}");
+        let shelf = split_counts(8, &["book", "vase", "box"], no_single, 1);
+        assert_eq!(shelf[0], ("book".to_string(), 4), "{shelf:?}");
     }
 
     #[test]

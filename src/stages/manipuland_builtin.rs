@@ -31,12 +31,15 @@ fn count_on(state: &StageState, entity: &str, want: &Want) -> u32 {
 /// The entity's surface keys in two tiers, each bottom-up: the open ones (tops, open shelves),
 /// then the enclosed ones (behind doors, in drawers), which get what the open ones cannot
 /// hold: a kitchen counter's appliances stand on its top, not in its cupboards. A wet basin
-/// comes last in its tier: shampoo stands on a bathtub's rim, not in the tub.
-fn surface_tiers(state: &StageState, entity: &str) -> [Vec<String>; 2] {
+/// comes last in its tier for the usual clutter (`asked` false): shampoo stands on a
+/// bathtub's rim, not in the tub.
+fn surface_tiers(state: &StageState, entity: &str, asked: bool) -> [Vec<String>; 2] {
     let mut list: Vec<(bool, (bool, f64), String)> = surfaces(state, Some(entity))
         .iter()
         .map(|s| {
-            let basin = s.surface.id == "basin";
+            // What the prompt put in a sink goes into its basin, the lowest open surface;
+            // the usual clutter keeps to the counter.
+            let basin = !asked && s.surface.id == "basin";
             (s.enclosed(state), (basin, s.surface.center[2]), s.key())
         })
         .collect();
@@ -91,7 +94,7 @@ impl BuiltinManipulandDesigner {
         if need == 0 {
             return;
         }
-        let tiers = surface_tiers(state, entity);
+        let tiers = surface_tiers(state, entity, want.explicit);
         let order: Vec<String> = tiers.concat();
         match &want.arrangement {
             Arrangement::Stack | Arrangement::Pile => {

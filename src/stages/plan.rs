@@ -284,7 +284,9 @@ fn pick(range: [u32; 2], t: f64) -> u32 {
 }
 
 /// Splits `total` small objects over candidate nouns (most typical first): the first takes
-/// half (a bookshelf is mostly books), the rest cycle through the list in order. A noun for
+/// half when it is a thing kept in numbers ([`kept_in_numbers`]: a bookshelf is mostly books,
+/// a cupboard mostly plates, not a sideboard mostly vases), the rest cycle through the list in
+/// order. A noun for
 /// which `single` holds (appliances, electronics, lamps) never takes the half and stops at
 /// `singles_cap` (one per parent: a counter has one coffee machine, not half a dozen).
 pub(crate) fn split_counts(
@@ -297,7 +299,11 @@ pub(crate) fn split_counts(
     if items.is_empty() || total == 0 {
         return counts;
     }
-    let first = if items.len() > 1 && total >= 4 && !single(items[0]) {
+    let first = if items.len() > 1
+        && total >= 4
+        && !single(items[0])
+        && kept_in_numbers(crate::prompt::lexicon(), items[0])
+    {
         total.div_ceil(2)
     } else {
         0
@@ -330,6 +336,23 @@ pub(crate) fn split_counts(
 
 /// True when `a` names `b` or a kind of `b`, or the other way round (explicit "table" covers
 /// a default "dining table"; explicit "office chair" covers a default "chair").
+/// Kinds of things a household keeps many of, side by side or stacked: books, tableware,
+/// clothing, textiles, stationery, food, toys.
+const KEPT_IN_NUMBERS: [&str; 7] = [
+    "book",
+    "tableware",
+    "clothing",
+    "textile",
+    "stationery",
+    "food",
+    "toy",
+];
+
+/// Whether `noun` is a kind of [`KEPT_IN_NUMBERS`] in the lexicon.
+pub(crate) fn kept_in_numbers(lex: &Lexicon, noun: &str) -> bool {
+    KEPT_IN_NUMBERS.iter().any(|kind| covers(lex, noun, kind))
+}
+
 fn covers(lex: &Lexicon, a: &str, b: &str) -> bool {
     if a == b {
         return true;

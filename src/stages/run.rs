@@ -273,7 +273,9 @@ fn surface_furniture<'a>(
         .scene
         .objects
         .iter()
-        .filter(move |o| o.room == room && o.kind == ObjectKind::Furniture)
+        .filter(move |o| {
+            o.room == room && matches!(o.kind, ObjectKind::Furniture | ObjectKind::Wall)
+        })
         .filter(|o| {
             scene
                 .scene

@@ -2,7 +2,7 @@
 //! real cavities, shower enclosures, sink vanities (basin in the top, doors below) and
 //! pedestal sinks.
 
-use super::kitchen::{FAUCET, top_with_basin};
+use super::kitchen::{FAUCET, top_with_basin, tops_beside_basin};
 use super::parts::{METAL, WHITE, body, shade, single, surface};
 use super::storage::{PANEL, carcass_opts};
 use super::{GenContext, Generated, GeneratorFn};
@@ -266,6 +266,9 @@ fn shower(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     )
 }
 
+/// Headroom over a vanity's counter, metres (the mirror hangs higher, against the wall).
+const VANITY_CLEARANCE: f64 = 0.35;
+
 /// Sink vanity: a cabinet with two doors under a top with a basin and faucet; the `pedestal`
 /// variant is a basin on a column.
 fn sink_vanity(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
@@ -296,7 +299,15 @@ fn sink_vanity(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
             WHITE,
             WHITE,
         )?;
-        return single(b.finish()?, vec![s]);
+        let mut surfaces = vec![s];
+        surfaces.extend(tops_beside_basin(
+            [-w / 2.0, w / 2.0, -d / 2.0, d / 2.0],
+            top,
+            0.0,
+            w * 0.62,
+            VANITY_CLEARANCE,
+        ));
+        return single(b.finish()?, surfaces);
     }
     let top_t = 0.03;
     let worktop = h - FAUCET;
@@ -345,7 +356,7 @@ fn sink_vanity(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         z1: c.z1,
     };
     let parts = door_pair("body", full, c.y_front, ov, 0.02, 1.75, false, lk)?;
-    let surfaces = vec![
+    let mut surfaces = vec![
         basin,
         surface(
             "shelf_0",
@@ -355,6 +366,13 @@ fn sink_vanity(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
             worktop - top_t - 0.16 - c.z0,
         ),
     ];
+    surfaces.extend(tops_beside_basin(
+        [-w / 2.0, w / 2.0, -d / 2.0, d / 2.0],
+        worktop,
+        0.0,
+        bw,
+        VANITY_CLEARANCE,
+    ));
     let mut links = vec![b.finish()?];
     let mut joints = Vec::new();
     for (l, j) in parts {

@@ -15,6 +15,7 @@ pub(super) const GENERATORS: &[(&str, GeneratorFn)] = &[
     ("vase", vase),
     ("flowers", flowers),
     ("candle", candle),
+    ("paper_roll", paper_roll),
     ("picture_frame", picture_frame),
     ("table_clock", table_clock),
     ("book", book),
@@ -137,6 +138,31 @@ fn candle(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     b.add_visual(
         shapes::ellipsoid_mesh([0.0, 0.0, wax_h + 0.012], [0.004, 0.004, 0.008], 8),
         [1.0, 0.7, 0.2],
+    );
+    single(b.finish()?, vec![])
+}
+
+/// Roll of toilet paper or paper towel: a soft cylinder around a cardboard core, the core's
+/// hole shown on its top (the collision is the solid cylinder: nothing goes in the hole).
+fn paper_roll(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
+    let [w, _d, h] = ctx.size;
+    let r = w / 2.0;
+    let core = (r * 0.4).max(0.02);
+    let mut b = body(ctx);
+    // Loosely wound paper around air: weighed as an 8 mm shell of the cylinder (a toilet
+    // roll about 0.12 kg, a kitchen roll about 0.25 kg).
+    b.shell(Some(0.008));
+    b.add_cylinder([0.0, 0.0], r, 0.0, h, ctx.color)?;
+    b.shell(None);
+    b.add_visual(
+        shapes::frustum_mesh(
+            [0.0, 0.0, h - 0.0002],
+            [0.0, 0.0, h + 0.0004],
+            core,
+            core,
+            24,
+        ),
+        [0.55, 0.42, 0.28],
     );
     single(b.finish()?, vec![])
 }

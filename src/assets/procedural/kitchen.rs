@@ -137,6 +137,36 @@ pub(super) fn top_with_basin(
     ))
 }
 
+/// The countertop left and right of a basin cut at `bx` (width `bw`) into a top from `x0` to
+/// `x1` and `y0` to `y1` (the first argument) at `z_top`, as surfaces `top_left` and `top_right` (2 cm in from
+/// every edge; a strip narrower than 8 cm is left out).
+pub(super) fn tops_beside_basin(
+    [x0, x1, y0, y1]: [f64; 4],
+    z_top: f64,
+    bx: f64,
+    bw: f64,
+    clearance: f64,
+) -> Vec<SurfaceRecord> {
+    let m = 0.02;
+    let depth = y1 - y0 - 2.0 * m;
+    [
+        ("top_left", x0 + m, bx - bw / 2.0 - m),
+        ("top_right", bx + bw / 2.0 + m, x1 - m),
+    ]
+    .into_iter()
+    .filter(|(_, a, b)| b - a >= 0.08 && depth >= 0.08)
+    .map(|(id, a, b)| {
+        surface(
+            id,
+            "body",
+            [(a + b) / 2.0, (y0 + y1) / 2.0, z_top],
+            [b - a, depth],
+            clearance,
+        )
+    })
+    .collect()
+}
+
 /// Counter runs: base cabinet modules (a drawer over a door each) under a countertop.
 /// Variants: `""` against a wall, `island` (overhang at the back for stools), `sink` (the
 /// middle module holds a basin and faucet).

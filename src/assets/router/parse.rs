@@ -231,6 +231,24 @@ fn find_noun(words: &[String]) -> Option<(usize, usize, String)> {
     // The head noun is the last content word: a match must end there ("dish rack" is no dish,
     // "test tube rack" no tube), and a compound that is not a kind of its head ("knife block")
     // matches nothing.
+    // A library noun that ends the phrase is its head even when its last word also names a
+    // material ("toilet paper", "tissue paper" are no toilet or tissue made of paper).
+    if let Some(last) = words.len().checked_sub(1)
+        && attributes::is_attribute_word(&words[last])
+    {
+        for len in (2..=4usize.min(words.len())).rev() {
+            let start = words.len() - len;
+            let literal = words[start..].join(" ");
+            let phrase = [&words[start..last], std::slice::from_ref(&sing[last])]
+                .concat()
+                .join(" ");
+            for p in [phrase, literal] {
+                if !candidate_categories(&p).is_empty() {
+                    return Some((start, len, p));
+                }
+            }
+        }
+    }
     let head = words.iter().rposition(|w| is_content_word(w))?;
     for len in (2..=4usize).rev() {
         if len <= head + 1 {

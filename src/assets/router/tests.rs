@@ -30,6 +30,25 @@ fn attributes_select_material_colour_and_category() {
 }
 
 #[test]
+fn a_library_noun_ending_in_a_material_word_is_that_noun() {
+    // "paper" also names a material; "toilet paper" is neither a toilet nor made of paper.
+    for text in [
+        "toilet paper",
+        "a roll of toilet paper",
+        "two toilet paper rolls",
+    ] {
+        let r = route(&RouteRequest::new(text, Stage::Manipuland, 1), &ctx()).unwrap();
+        assert_eq!(r.primary.category, "toilet_paper", "{text}");
+    }
+    let r = route(
+        &RouteRequest::new("a glass vase", Stage::Manipuland, 1),
+        &ctx(),
+    )
+    .unwrap();
+    assert_eq!(r.primary.category, "vase");
+}
+
+#[test]
 fn stage_filtering_refuses_with_an_actionable_reason() {
     let e = route(
         &RouteRequest::new("a coffee mug", Stage::Furniture, 1),
