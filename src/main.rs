@@ -279,6 +279,12 @@ fn run_generate(cli_json: bool, opts: GenerateOptions) -> anyhow::Result<ExitCod
         print_json(&serde_json::to_value(&summary)?)?;
     } else {
         eprintln!("wrote {}", summary.out.display());
+        if let Some(kept) = &summary.kept_previous {
+            eprintln!(
+                "  the directory it replaced held files scenesmith did not write: kept as {}",
+                kept.display()
+            );
+        }
         for (id, ty) in &summary.rooms {
             eprintln!("  room {id} ({ty})");
         }
@@ -875,26 +881,8 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {}", error_chain(&e));
+            eprintln!("error: {e:#}");
             ExitCode::from(1)
         }
     }
-}
-
-/// The error and its causes on one line, leaving out a cause whose text the previous
-/// message already ends with (library errors often quote their source).
-fn error_chain(e: &anyhow::Error) -> String {
-    let mut out = String::new();
-    let mut last = String::new();
-    for cause in e.chain() {
-        let text = cause.to_string();
-        if !last.ends_with(&text) {
-            if !out.is_empty() {
-                out.push_str(": ");
-            }
-            out.push_str(&text);
-        }
-        last = text;
-    }
-    out
 }

@@ -32,6 +32,9 @@ use crate::stages::plan::plan_room;
 use crate::stages::run::{Backend, StageSummary, furnish_room_resumable};
 use crate::util::fsx::{FsError, StagingDir};
 
+/// The LLM transcript in a scene directory.
+const LLM_LOG: &str = "llm_log.jsonl";
+
 /// Longest prompt accepted, in characters.
 pub const MAX_PROMPT_CHARS: usize = 8000;
 
@@ -91,14 +94,21 @@ pub enum PipelineError {
     Llm(#[from] LlmError),
     /// A failure after some stages finished; `--resume` continues from there.
     #[error(
-        "{source} ({finished} finished stages were saved; run the same command with --resume to continue)"
+        "{error} ({finished} finished stages were saved; run the same command with --resume to continue)"
     )]
     Resumable {
         /// Stages saved.
         finished: usize,
         /// The failure.
-        #[source]
-        source: Box<PipelineError>,
+        error: Box<PipelineError>,
+    },
+    /// A failed run of the LLM backend, whose transcript was kept.
+    #[error("{error} (the LLM transcript of this run is kept in {})", transcript.display())]
+    TranscriptKept {
+        /// The failure.
+        error: Box<PipelineError>,
+        /// Where `llm_log.jsonl` of the failed run now is.
+        transcript: PathBuf,
     },
 }
 
@@ -184,6 +194,10 @@ pub type Timings = BTreeMap<String, f64>;
 pub struct GenerateSummary {
     /// Output directory.
     pub out: PathBuf,
+    /// Where the directory this run replaced was kept, because it held files scenesmith did
+    /// not write.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kept_previous: Option<PathBuf>,
     /// Room ids and types.
     pub rooms: Vec<(String, String)>,
     /// Object count per kind.
@@ -412,8 +426,7 @@ fn make_backend(
     Ok(match choice {
         BackendChoice::Builtin => (Backend::Builtin, None),
         BackendChoice::Llm(config) => {
-            let log =
-                crate::agents::llm::transport::LogWriter::open(&log_dir.join("llm_log.jsonl"))?;
+            let log = crate::agents::llm::transport::LogWriter::open(&log_dir.join(LLM_LOG))?;
             let t = shared(Box::new(HttpTransport::new(config.clone(), Some(log))?));
             (
                 Backend::Llm {
@@ -430,7 +443,7 @@ fn make_backend(
                 ..LlmConfig::default()
             };
             // Keep the replayed log with the scene, like a recorded run.
-            let _ = std::fs::copy(path, log_dir.join("llm_log.jsonl"));
+            let _ = std::fs::copy(path, log_dir.join(LLM_LOG));
             let t = shared(Box::new(replay));
             (
                 Backend::Llm {
@@ -444,7 +457,7 @@ fn make_backend(
 }
 
 type Finished = (
-    PathBuf,
+    crate::util::fsx::Committed,
     SceneState,
     BuildReport,
     Vec<collision::PairPenetration>,
@@ -571,7 +584,12 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
     let mut timings = Timings::new();
     let t_total = Instant::now();
     // Fails before any work when the output cannot be written.
-    let staging = StagingDir::new(&opts.out)?;
+    let mut staging = StagingDir::new(&opts.out)?;
+    let transcript = matches!(opts.backend, BackendChoice::Llm(_))
+        .then(|| StagingDir::kept_path(staging.target(), LLM_LOG));
+    if transcript.is_some() {
+        staging.keep_on_failure(LLM_LOG);
+    }
     let package = package_name_for(staging.target());
     if opts.drake_check {
         crate::physics::bridge::BridgeConfig::from_env().preflight()?;
@@ -594,14 +612,23 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
     });
     let (out, state, report, rust_pairs, check, physics) = match finished {
         Ok(v) => v,
-        Err(e) if checkpoints.finished().is_empty() => {
-            checkpoints.clear();
-            return Err(e);
-        }
         Err(e) => {
-            return Err(PipelineError::Resumable {
-                finished: checkpoints.finished().len(),
-                source: Box::new(e),
+            let e = if checkpoints.finished().is_empty() {
+                checkpoints.clear();
+                e
+            } else {
+                PipelineError::Resumable {
+                    finished: checkpoints.finished().len(),
+                    error: Box::new(e),
+                }
+            };
+            return Err(match transcript {
+                // The staging directory is gone by now; its transcript was moved out.
+                Some(path) if path.is_file() => PipelineError::TranscriptKept {
+                    error: Box::new(e),
+                    transcript: path,
+                },
+                _ => e,
             });
         }
     };
@@ -616,7 +643,8 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
         }
     }
     Ok(GenerateSummary {
-        out,
+        out: out.path,
+        kept_previous: out.kept_previous,
         rooms: state
             .scene
             .rooms

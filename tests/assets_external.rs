@@ -41,6 +41,10 @@ enum Mode {
     Garbage,
     Error,
     Slow,
+    /// Announces a 4 GiB model.
+    Huge,
+    /// Streams 8 MiB with no length, until it closes the connection.
+    Endless,
 }
 
 /// A one-route HTTP server on loopback; returns its URL and the request bodies it saw.
@@ -68,6 +72,25 @@ fn serve(mode: Mode) -> (String, Arc<Mutex<Vec<serde_json::Value>>>) {
             if let Ok(v) = serde_json::from_slice(&body) {
                 log.lock().unwrap().push(v);
             }
+            match mode {
+                Mode::Huge => {
+                    let head = "HTTP/1.1 200 OK\r\nContent-Type: model/gltf-binary\r\nContent-Length: 4294967296\r\nConnection: close\r\n\r\n";
+                    let _ = stream.write_all(head.as_bytes());
+                    let _ = stream.write_all(&[0u8; 1024]);
+                    continue;
+                }
+                Mode::Endless => {
+                    let head = "HTTP/1.1 200 OK\r\nContent-Type: model/gltf-binary\r\nConnection: close\r\n\r\n";
+                    let _ = stream.write_all(head.as_bytes());
+                    for _ in 0..128 {
+                        if stream.write_all(&[7u8; 65536]).is_err() {
+                            break;
+                        }
+                    }
+                    continue;
+                }
+                _ => {}
+            }
             let (status, ctype, payload): (&str, &str, Vec<u8>) = match mode {
                 Mode::Glb => ("200 OK", "model/gltf-binary", nosed_block_glb()),
                 Mode::Garbage => (
@@ -84,6 +107,7 @@ fn serve(mode: Mode) -> (String, Arc<Mutex<Vec<serde_json::Value>>>) {
                     std::thread::sleep(Duration::from_secs(3));
                     ("200 OK", "model/gltf-binary", nosed_block_glb())
                 }
+                Mode::Huge | Mode::Endless => unreachable!("answered above"),
             };
             let head = format!(
                 "HTTP/1.1 {status}\r\nContent-Type: {ctype}\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
@@ -196,6 +220,22 @@ fn garbage_errors_and_timeouts_fall_back_with_the_reason() {
         .unwrap_err();
     assert!(matches!(e, ExternalError::Timeout { .. }), "{e}");
     assert!(t0.elapsed() < Duration::from_secs(2));
+
+    // A body larger than the limit is refused, announced or not, without reading it all.
+    let (huge, _) = serve(Mode::Huge);
+    let e = HttpBackend::new(&huge, Duration::from_secs(5))
+        .generate("a thing", SupportClass::Surface, None, 1)
+        .unwrap_err();
+    assert!(e.to_string().contains("exceeds the limit"), "{e}");
+    let (endless, _) = serve(Mode::Endless);
+    let e = HttpBackend::new(&endless, Duration::from_secs(5))
+        .with_max_bytes(1 << 20)
+        .generate("a thing", SupportClass::Surface, None, 1)
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("exceeds the limit of 1048576 bytes"),
+        "{e}"
+    );
 
     // Through the router: a generic stand-in, and the note says why.
     for url in [&garbage, &slow] {

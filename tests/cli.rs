@@ -179,6 +179,15 @@ fn unwritable_output_is_a_clear_error() {
         "{}",
         text(&g)
     );
+    // The cause is printed once, not once per layer that wraps it.
+    assert_eq!(
+        String::from_utf8_lossy(&g.stderr)
+            .matches("os error")
+            .count(),
+        1,
+        "{}",
+        text(&g)
+    );
     assert_eq!(read(&file), b"x");
 
     // A directory holding something that is not a scene is never replaced.
@@ -195,8 +204,86 @@ fn unwritable_output_is_a_clear_error() {
         &[],
     );
     assert_eq!(g.status.code(), Some(1), "{}", text(&g));
-    assert!(String::from_utf8_lossy(&g.stderr).contains("not a scenesmith scene directory"));
+    assert!(
+        String::from_utf8_lossy(&g.stderr).contains("not a scene directory written by scenesmith")
+    );
     assert_eq!(read(&precious.join("notes.txt")), b"keep me");
+
+    // Nor is one whose scene.json some other program wrote.
+    std::fs::write(precious.join("scene.json"), r#"{"camera": [0, 0, 1]}"#).unwrap();
+    let g = scenesmith(
+        &[
+            "generate",
+            "a kitchen with a table",
+            "--out",
+            precious.to_str().unwrap(),
+        ],
+        &[],
+    );
+    assert_eq!(g.status.code(), Some(1), "{}", text(&g));
+    assert_eq!(read(&precious.join("notes.txt")), b"keep me");
+    assert_eq!(
+        read(&precious.join("scene.json")),
+        br#"{"camera": [0, 0, 1]}"#
+    );
+}
+
+/// Replacing a scene deletes only what scenesmith wrote: a user's file in it moves, with the
+/// old scene, to `DIR.previous`; views are replaced whole, refusing a folder with other files.
+#[test]
+fn replacing_a_scene_keeps_the_users_files() {
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("scene");
+    let out_arg = out.to_str().unwrap();
+    let generate = || {
+        let g = scenesmith(
+            &[
+                "generate",
+                "a bedroom with a bed",
+                "--out",
+                out_arg,
+                "--no-check",
+                "--no-render",
+                "--export",
+                "glb",
+            ],
+            &[],
+        );
+        assert!(g.status.success(), "{}", text(&g));
+        String::from_utf8_lossy(&g.stderr).into_owned()
+    };
+    generate();
+    let stderr = generate();
+    assert!(!stderr.contains("kept as"), "{stderr}");
+    assert_eq!(listing(root.path()), vec!["scene"]);
+    std::fs::write(out.join("notes.txt"), "mine").unwrap();
+    let stderr = generate();
+    let previous = root.path().join("scene.previous");
+    assert!(stderr.contains(previous.to_str().unwrap()), "{stderr}");
+    assert_eq!(read(&previous.join("notes.txt")), b"mine");
+    assert!(previous.join("scene.json").is_file());
+    assert!(!out.join("notes.txt").exists());
+
+    // Views: a folder of views is replaced whole; one holding a user's file is refused.
+    let views = root.path().join("views");
+    std::fs::create_dir(&views).unwrap();
+    std::fs::write(views.join("bedroom_0_view_9.png"), "stale").unwrap();
+    let r = scenesmith(&["render", out_arg, "--out", views.to_str().unwrap()], &[]);
+    assert!(r.status.success(), "{}", text(&r));
+    assert!(views.join("top.png").is_file());
+    assert!(
+        !views.join("bedroom_0_view_9.png").exists(),
+        "a stale view stayed"
+    );
+    std::fs::write(views.join("sketch.txt"), "mine").unwrap();
+    let r = scenesmith(&["render", out_arg, "--out", views.to_str().unwrap()], &[]);
+    assert_eq!(r.status.code(), Some(1), "{}", text(&r));
+    assert!(
+        String::from_utf8_lossy(&r.stderr).contains("sketch.txt"),
+        "{}",
+        text(&r)
+    );
+    assert_eq!(read(&views.join("sketch.txt")), b"mine");
 }
 
 /// Every entry of `dir` (names only), to prove nothing half-written was left behind.
@@ -240,7 +327,7 @@ fn bridge_killed_mid_request_keeps_previous_scene() {
     let first = scenesmith(
         &[
             "generate",
-            "a kitchen with a table",
+            "a minimal kitchen with a table",
             "--out",
             out.to_str().unwrap(),
             "--no-stb",
@@ -308,7 +395,7 @@ fn check_fails_on_a_scene_with_penetration() {
     let g = scenesmith(
         &[
             "generate",
-            "a kitchen with a table and four chairs",
+            "a minimal kitchen with a table and four chairs",
             "--out",
             out.to_str().unwrap(),
             "--no-stb",
@@ -341,6 +428,9 @@ fn check_fails_on_a_scene_with_penetration() {
     );
 }
 
+/// The `scene.json` of a scene an earlier run wrote, as small as the check accepts.
+const OLD_SCENE: &str = r#"{"schema_version": 1, "provenance": {"tool_version": "0.1.0"}}"#;
+
 /// A full disk: the run fails with a clear error, the previous scene stays, nothing
 /// half-written is left. The disk is a 48 KiB tmpfs in a private mount namespace.
 #[test]
@@ -350,11 +440,12 @@ fn full_disk_is_a_clear_error_and_loses_nothing() {
     std::fs::create_dir(&disk).unwrap();
     let bin = env!("CARGO_BIN_EXE_scenesmith");
     let script = format!(
-        "set -e; mount -t tmpfs -o size=48k tmpfs {disk}; mkdir {disk}/scene; echo old > {disk}/scene/scene.json; \
+        "set -e; mount -t tmpfs -o size=48k tmpfs {disk}; mkdir {disk}/scene; echo '{old}' > {disk}/scene/scene.json; \
          set +e; SCENESMITH_HOME={home} {bin} generate 'A library with four shelves full of books and a table' --out {disk}/scene --no-check; \
          echo \"exit=$?\"; ls -a {disk}; cat {disk}/scene/scene.json",
         disk = disk.display(),
         home = common::home().display(),
+        old = OLD_SCENE,
     );
     let out = std::process::Command::new("unshare")
         .args(["--user", "--map-root-user", "--mount", "sh", "-c", &script])
@@ -376,7 +467,7 @@ fn full_disk_is_a_clear_error_and_loses_nothing() {
         .into_iter()
         .filter(|l| *l != ".scene.checkpoints")
         .collect();
-    assert_eq!(entries, vec![".", "..", "scene", "old"], "{stdout}");
+    assert_eq!(entries, vec![".", "..", "scene", OLD_SCENE], "{stdout}");
     if kept_checkpoints {
         assert!(stderr.contains("--resume"), "{stderr}");
     }
@@ -387,7 +478,8 @@ fn full_disk_is_a_clear_error_and_loses_nothing() {
 #[test]
 fn failed_run_resumes_from_its_checkpoints() {
     let root = tempfile::tempdir().unwrap();
-    let prompt = "A kitchen with a table, four chairs, plates and mugs, and a shelf with books";
+    // A minimal room: resuming is about checkpoints, not clutter (and CI time).
+    let prompt = "A minimal kitchen with a table, two chairs, two plates and a mug";
     let out = root.path().join("a/scene");
     let g = scenesmith(
         &[

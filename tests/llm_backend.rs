@@ -467,3 +467,40 @@ fn the_same_failing_call_repeated_ends_the_designer_turn() {
         .count();
     assert_eq!(tables > 0, later_turns > 0);
 }
+
+/// An endpoint that only ever answers in prose: the run fails cleanly, writes no scene, and
+/// keeps the transcript of what the model said next to the output, naming it in the error.
+#[test]
+fn a_failed_run_keeps_its_transcript_and_says_where() {
+    let mut script = Script::default();
+    for _ in 0..400 {
+        script
+            .preface
+            .push_back(Reply::ok(text("I would put a sofa by the window.")));
+    }
+    let server = MockServer::start(script);
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("scene");
+    let g = scenesmith(
+        &[
+            "generate",
+            PROMPT,
+            "--out",
+            out.to_str().unwrap(),
+            "--no-check",
+            "--llm-base-url",
+            &server.base_url,
+            "--llm-model",
+            "mock-model",
+        ],
+        &[],
+    );
+    assert_eq!(g.status.code(), Some(1), "{}", out_text(&g));
+    assert!(!out.exists());
+    let kept = root.path().join("scene.llm_log.jsonl");
+    let stderr = String::from_utf8_lossy(&g.stderr);
+    assert!(stderr.contains(kept.to_str().unwrap()), "{stderr}");
+    let log = std::fs::read_to_string(&kept).unwrap();
+    assert!(log.lines().count() >= 1);
+    assert!(log.contains("I would put a sofa"), "{log}");
+}

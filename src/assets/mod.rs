@@ -35,13 +35,12 @@ pub enum AssetError {
     #[error("no generator for category {0:?}")]
     UnknownCategory(String),
     /// Geometry or mass properties failed validation.
-    #[error("asset {asset:?}: {source}")]
+    #[error("asset {asset:?}: {cause}")]
     Geometry {
         /// Asset being built.
         asset: String,
         /// The underlying problem.
-        #[source]
-        source: GeometryError,
+        cause: GeometryError,
     },
     /// The asset is structurally wrong (no links, a joint naming a missing link, ...).
     #[error("asset {asset:?} is malformed: {reason}")]
@@ -249,7 +248,7 @@ impl Asset {
                     .validate()
                     .map_err(|source| AssetError::Geometry {
                         asset: self.id.clone(),
-                        source,
+                        cause: source,
                     })?;
             }
         }

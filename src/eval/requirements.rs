@@ -29,7 +29,6 @@ use crate::formats::FormatError;
 use crate::knowledge::knowledge;
 use crate::prompt::lexicon::lexicon;
 use crate::scene::{ObjectKind, Room, Scene, SceneObject};
-use crate::util::fsx::write_atomic;
 
 /// File name of the report in a scene directory.
 pub const REQUIREMENTS_REPORT_JSON: &str = "requirements_report.json";
@@ -671,7 +670,8 @@ pub fn write_report(dir: &Path, report: &RequirementsReport) -> Result<(), EvalE
         reason: e.to_string(),
     })?;
     text.push('\n');
-    write_atomic(&path, text.as_bytes()).map_err(FormatError::from)?;
+    crate::util::fsx::write_scene_file(dir, REQUIREMENTS_REPORT_JSON, text.as_bytes())
+        .map_err(FormatError::from)?;
     Ok(())
 }
 

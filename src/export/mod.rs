@@ -23,7 +23,7 @@ pub mod view;
 use std::path::{Component, Path, PathBuf};
 
 use crate::stages::SceneState;
-use crate::util::fsx::{FsError, io_err, write_atomic};
+use crate::util::fsx::{FsError, io_err};
 
 pub use view::SceneView;
 
@@ -100,6 +100,23 @@ impl ExportFormat {
             ExportFormat::Mjcf => "mjcf",
             ExportFormat::Usd => "usd",
             ExportFormat::Glb => "glb",
+        }
+    }
+
+    /// Its folder inside `export/` ("" for the single-file glTF).
+    fn folder(self) -> &'static str {
+        match self {
+            ExportFormat::Mjcf => "mujoco",
+            ExportFormat::Usd => "usd",
+            ExportFormat::Glb => "",
+        }
+    }
+
+    /// Whether the file `rel` (relative to `export/`) belongs to this format's export.
+    fn owns(self, rel: &Path) -> bool {
+        match self {
+            ExportFormat::Glb => rel == Path::new("scene.glb"),
+            _ => rel.starts_with(self.folder()),
         }
     }
 
@@ -250,74 +267,59 @@ pub fn render(state: &SceneState, format: ExportFormat) -> Result<Vec<ExportFile
     }
 }
 
-/// Writes the selected exports into `scene_dir/export/`. Each folder format is assembled in a
-/// hidden sibling and swapped in whole, so a failure leaves the previous export in place.
+/// Writes the selected exports into `scene_dir/export/`. All of them are rendered first, then
+/// `export/` is replaced whole (the formats not selected carried over from the previous export),
+/// so a failure leaves the previous exports in place, never a mix of old and new.
 pub fn write_exports(
     scene_dir: &Path,
     state: &SceneState,
     set: &ExportSet,
 ) -> Result<Vec<WrittenExport>, ExportError> {
-    let mut written = Vec::new();
+    let mut rendered = Vec::new();
     for &format in set.formats() {
-        let files = render(state, format)?;
-        let bytes = files.iter().map(|f| f.bytes.len()).sum();
-        match format {
-            ExportFormat::Glb => {
-                let path = safe_join(&scene_dir.join(paths::EXPORT_DIR), "scene.glb")?;
-                let glb = files.first().map(|f| f.bytes.as_slice()).unwrap_or(&[]);
-                write_atomic(&path, glb)?;
-            }
-            ExportFormat::Mjcf => write_folder(&scene_dir.join(paths::MJCF_DIR), &files)?,
-            ExportFormat::Usd => write_folder(&scene_dir.join(paths::USD_DIR), &files)?,
-        }
-        written.push(WrittenExport {
-            format,
+        rendered.push((format, render(state, format)?));
+    }
+    let written = rendered
+        .iter()
+        .map(|(format, files)| WrittenExport {
+            format: *format,
             main_file: format.main_file().to_string(),
             files: files.len(),
-            bytes,
-        });
-    }
+            bytes: files.iter().map(|f| f.bytes.len()).sum(),
+        })
+        .collect();
+    replace_exports(scene_dir, rendered)?;
     Ok(written)
 }
 
-/// Writes `files` into a fresh hidden sibling of `folder`, then replaces `folder` with it.
-fn write_folder(folder: &Path, files: &[ExportFile]) -> Result<(), ExportError> {
-    let parent = folder.parent().unwrap_or(Path::new("."));
-    std::fs::create_dir_all(parent).map_err(io_err("create directory", parent))?;
-    let name = folder
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "export".into());
-    let pid = std::process::id();
-    let staging = parent.join(format!(".{name}.partial-{pid}"));
-    let old = parent.join(format!(".{name}.old-{pid}"));
-    for stale in [&staging, &old] {
-        if stale.exists() {
-            std::fs::remove_dir_all(stale).map_err(io_err("remove", stale))?;
+/// Replaces `scene_dir/export/` with the `rendered` formats plus the files of the formats not
+/// rendered, carried over from the previous export.
+fn replace_exports(
+    scene_dir: &Path,
+    rendered: Vec<(ExportFormat, Vec<ExportFile>)>,
+) -> Result<(), ExportError> {
+    if rendered.is_empty() {
+        return Ok(());
+    }
+    let export_dir = scene_dir.join(paths::EXPORT_DIR);
+    let mut staged: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    for rel in crate::util::fsx::files_under(&export_dir)? {
+        if !rendered.iter().any(|(f, _)| f.owns(&rel)) {
+            let path = export_dir.join(&rel);
+            let bytes = std::fs::read(&path).map_err(io_err("read", &path))?;
+            staged.push((rel, bytes));
         }
     }
-    let result = (|| -> Result<(), ExportError> {
+    for (format, files) in rendered {
+        let folder = format.folder();
         for f in files {
-            let path = safe_join(&staging, &f.path)?;
-            if let Some(dir) = path.parent() {
-                std::fs::create_dir_all(dir).map_err(io_err("create directory", dir))?;
-            }
-            std::fs::write(&path, &f.bytes).map_err(io_err("write", &path))?;
+            // Refuses paths that would leave the folder.
+            safe_join(&export_dir.join(folder), &f.path)?;
+            staged.push((Path::new(folder).join(&f.path), f.bytes));
         }
-        if folder.exists() {
-            std::fs::rename(folder, &old).map_err(io_err("move aside", folder))?;
-        }
-        if let Err(e) = std::fs::rename(&staging, folder) {
-            let _ = std::fs::rename(&old, folder);
-            return Err(io_err("rename into", folder)(e).into());
-        }
-        Ok(())
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_dir_all(&staging);
     }
-    let _ = std::fs::remove_dir_all(&old);
-    result
+    crate::util::fsx::replace_folder(scene_dir, &export_dir, &staged)?;
+    Ok(())
 }
 
 #[cfg(test)]
@@ -344,22 +346,29 @@ mod tests {
     }
 
     #[test]
-    fn folder_swap_replaces_whole_folder() {
+    fn exports_are_replaced_whole_and_other_formats_carried_over() {
         let dir = tempfile::tempdir().unwrap();
-        let folder = dir.path().join("export/mujoco");
-        write_folder(&folder, &[ExportFile::text("a/old.txt", "old".into())]).unwrap();
-        write_folder(&folder, &[ExportFile::text("b/new.txt", "new".into())]).unwrap();
-        assert!(!folder.join("a/old.txt").exists());
-        assert_eq!(
-            std::fs::read_to_string(folder.join("b/new.txt")).unwrap(),
-            "new"
+        let scene = dir.path();
+        let mjcf = |name: &str| (ExportFormat::Mjcf, vec![ExportFile::text(name, "m".into())]);
+        let glb = (
+            ExportFormat::Glb,
+            vec![ExportFile::text("scene.glb", "g".into())],
         );
-        // A bad path fails before the old folder is touched.
-        let err = write_folder(&folder, &[ExportFile::text("../evil", "x".into())]);
+        replace_exports(scene, vec![mjcf("a/old.xml"), glb]).unwrap();
+        replace_exports(scene, vec![mjcf("b/new.xml")]).unwrap();
+        let export = scene.join(paths::EXPORT_DIR);
+        assert!(!export.join("mujoco/a/old.xml").exists());
+        assert!(export.join("mujoco/b/new.xml").is_file());
+        assert_eq!(
+            std::fs::read_to_string(export.join("scene.glb")).unwrap(),
+            "g"
+        );
+        // A bad path fails before the old exports are touched.
+        let err = replace_exports(scene, vec![mjcf("../evil")]);
         assert!(matches!(err, Err(ExportError::UnsafePath(_))));
-        assert!(folder.join("b/new.txt").exists());
-        assert!(!dir.path().join("export/evil").exists());
-        let hidden: Vec<_> = std::fs::read_dir(dir.path().join("export"))
+        assert!(export.join("mujoco/b/new.xml").is_file());
+        assert!(!export.join("evil").exists());
+        let hidden: Vec<_> = std::fs::read_dir(scene)
             .unwrap()
             .filter_map(|e| e.ok())
             .filter(|e| e.file_name().to_string_lossy().starts_with('.'))

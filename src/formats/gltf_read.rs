@@ -153,6 +153,19 @@ fn load_buffers(doc: &Value, glb_bin: Option<Vec<u8>>, base: Option<&Path>) -> R
     Ok(out)
 }
 
+/// `Some(())` when `count` elements of `elem` bytes, `stride` apart from `off`, lie within
+/// `len` bytes (overflow-checked).
+fn fits(count: usize, off: usize, stride: usize, elem: usize, len: usize) -> Option<()> {
+    if count == 0 {
+        return Some(());
+    }
+    let end = (count - 1)
+        .checked_mul(stride)?
+        .checked_add(off)?
+        .checked_add(elem)?;
+    (end <= len).then_some(())
+}
+
 struct Reader<'a> {
     doc: &'a Value,
     buffers: Vec<Vec<u8>>,
@@ -194,6 +207,8 @@ impl Reader<'_> {
         };
         let stride = if stride == 0 { size * n } else { stride };
         let norm = a["normalized"].as_bool().unwrap_or(false);
+        // The count comes from the file: check it against the bytes there before allocating.
+        fits(count, off, stride, size * n, bytes.len()).ok_or("accessor exceeds its view")?;
         let mut rows = Vec::with_capacity(count);
         for i in 0..count {
             let mut row = Vec::with_capacity(n);
@@ -234,6 +249,7 @@ impl Reader<'_> {
             Some(5125) => 4,
             other => return Err(format!("unsupported index type {other:?}")),
         };
+        fits(count, off, size, size, bytes.len()).ok_or("index accessor exceeds its view")?;
         let mut out = Vec::with_capacity(count);
         for i in 0..count {
             let at = off + i * size;
@@ -540,5 +556,27 @@ mod tests {
         assert!(parse(b"not json", None).is_err());
         assert!(base64_decode("!!!").is_err());
         assert_eq!(base64_decode("aGVsbG8=").unwrap(), b"hello");
+    }
+
+    #[test]
+    fn a_hostile_count_is_an_error_not_an_allocation() {
+        let dir = tempfile::tempdir().unwrap();
+        let link = link_visual_gltf("body", &[part(false)], "body.bin");
+        std::fs::write(dir.path().join("body.bin"), &link.bin).unwrap();
+        let doc: Value = serde_json::from_str(&link.gltf).unwrap();
+        let accessors = doc["accessors"].as_array().unwrap().len();
+        for count in [1u64 << 60, u64::MAX / 2, 1 << 30] {
+            for i in 0..accessors {
+                let mut hostile = doc.clone();
+                hostile["accessors"][i]["count"] = count.into();
+                let path = dir.path().join(format!("hostile_{i}.gltf"));
+                std::fs::write(&path, serde_json::to_vec(&hostile).unwrap()).unwrap();
+                let err = read_file(&path).unwrap_err();
+                assert!(
+                    err.contains("exceeds"),
+                    "accessor {i}, count {count}: {err}"
+                );
+            }
+        }
     }
 }

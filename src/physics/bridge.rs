@@ -33,13 +33,12 @@ pub enum BridgeError {
         path: PathBuf,
     },
     /// The process could not be started.
-    #[error("could not start the Drake bridge ({python}): {source}")]
+    #[error("could not start the Drake bridge ({python}): {cause}")]
     Spawn {
         /// Interpreter.
         python: PathBuf,
         /// OS error.
-        #[source]
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// The process started but did not say hello (pydrake missing, wrong version, crash).
     #[error("the Drake bridge did not start: {detail}\n{stderr}")]
@@ -197,7 +196,7 @@ fn spawn(config: &BridgeConfig) -> Result<(Process, Hello), BridgeError> {
     }
     let mut child = cmd.spawn().map_err(|source| BridgeError::Spawn {
         python: config.python.clone(),
-        source,
+        cause: source,
     })?;
     let (Some(stdin), Some(stdout), Some(stderr_pipe)) =
         (child.stdin.take(), child.stdout.take(), child.stderr.take())

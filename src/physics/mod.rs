@@ -41,13 +41,12 @@ pub enum PhysicsError {
     #[error(transparent)]
     Format(#[from] crate::formats::FormatError),
     /// A file or directory of the physics workspace could not be written.
-    #[error("physics workspace {path}: {source}")]
+    #[error("physics workspace {path}: {cause}")]
     Io {
         /// The path.
         path: std::path::PathBuf,
         /// OS error.
-        #[source]
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// The bridge answered with something this build does not understand.
     #[error("unexpected reply to `{op}` from the Drake bridge: {detail}")]

@@ -33,7 +33,7 @@ pub struct Workspace {
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> PhysicsError + '_ {
     move |source| PhysicsError::Io {
         path: path.to_path_buf(),
-        source,
+        cause: source,
     }
 }
 

@@ -108,12 +108,12 @@ struct ObjectsFile {
 #[derive(Debug, thiserror::Error)]
 pub enum LexiconError {
     /// A data file does not parse.
-    #[error("lexicon file {file} does not parse: {source}")]
+    #[error("lexicon file {file} does not parse: {cause}")]
     Parse {
         /// Which file.
         file: &'static str,
         /// The JSON error.
-        source: serde_json::Error,
+        cause: serde_json::Error,
     },
     /// Two nouns claim the same spelling.
     #[error("the spelling {spelling:?} belongs to both {a:?} and {b:?}")]
@@ -172,12 +172,12 @@ impl Lexicon {
     pub fn parse(words: &str, objects: &str, styles: &str) -> Result<Lexicon, LexiconError> {
         let w: WordsFile = serde_json::from_str(words).map_err(|source| LexiconError::Parse {
             file: "lexicon/words.json",
-            source,
+            cause: source,
         })?;
         let o: ObjectsFile =
             serde_json::from_str(objects).map_err(|source| LexiconError::Parse {
                 file: "lexicon/objects.json",
-                source,
+                cause: source,
             })?;
         let mut spellings: HashMap<String, usize> = HashMap::new();
         for (i, e) in o.objects.iter().enumerate() {
@@ -584,7 +584,7 @@ struct StyleEntry {
 fn style_words(text: &str) -> Result<HashMap<String, StyleWord>, LexiconError> {
     let f: StyleFile = serde_json::from_str(text).map_err(|source| LexiconError::Parse {
         file: "asset_attributes.json",
-        source,
+        cause: source,
     })?;
     let wn = super::wordnet::wordnet();
     let mut out = HashMap::new();

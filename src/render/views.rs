@@ -19,6 +19,7 @@ use super::text::{draw_text, measure};
 use crate::assets::Asset;
 use crate::scene::{ObjectKind, Room};
 use crate::stages::SceneState;
+use crate::util::fsx::{FsError, files_under, replace_folder, swap_folder};
 
 /// Options of the per-room perspective views.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -451,26 +452,49 @@ fn fit_text(text: &str, px: f32, max_w: f32) -> Result<String, RenderError> {
     Ok(String::new())
 }
 
-/// Writes `top.png` and every room's corner views (`<room>_view_<k>.png`) of `state` into
-/// `out_dir`; returns the paths written.
-pub fn write_views(out_dir: &Path, state: &SceneState) -> Result<Vec<PathBuf>, RenderError> {
+/// `top.png` and every room's corner views (`<room>_view_<k>.png`) of `state`, encoded.
+fn encoded_views(state: &SceneState) -> Result<Vec<(PathBuf, Vec<u8>)>, RenderError> {
     let rs = RenderScene::from_state(state)?;
-    let mut written = Vec::new();
     let top = plan_view(&rs, &PlanOptions::default())?;
-    let path = out_dir.join("top.png");
-    top.save_png(&path)?;
-    written.push(path);
+    let mut files = vec![(PathBuf::from("top.png"), top.encode_png()?)];
     for ri in 0..rs.rooms.len() {
         for (name, img) in room_views(&rs, ri, &RoomViewOptions::default())? {
-            let path = out_dir.join(format!("{}.png", crate::scene::sanitize_name(&name)));
-            img.save_png(&path)?;
-            written.push(path);
+            let name = format!("{}.png", crate::scene::sanitize_name(&name));
+            files.push((PathBuf::from(name), img.encode_png()?));
         }
     }
-    Ok(written)
+    Ok(files)
 }
 
-/// Writes the standard views of a scene directory's state into `dir/renders/`.
+/// Whether `name` is a file [`write_views`] writes.
+fn is_view_file(name: &Path) -> bool {
+    let n = name.to_string_lossy();
+    n == "top.png"
+        || n.strip_suffix(".png")
+            .and_then(|s| s.rsplit_once("_view_"))
+            .is_some_and(|(_, k)| !k.is_empty() && k.chars().all(|c| c.is_ascii_digit()))
+}
+
+/// Replaces `out_dir` with `top.png` and every room's corner views of `state` (so views of
+/// rooms no longer in the scene go); refuses a folder holding other files. Returns the paths.
+pub fn write_views(out_dir: &Path, state: &SceneState) -> Result<Vec<PathBuf>, RenderError> {
+    if let Some(file) = files_under(out_dir)?.into_iter().find(|f| !is_view_file(f)) {
+        return Err(FsError::ForeignFile {
+            folder: out_dir.to_path_buf(),
+            file,
+        }
+        .into());
+    }
+    let files = encoded_views(state)?;
+    swap_folder(out_dir, &files)?;
+    Ok(files.into_iter().map(|(p, _)| out_dir.join(p)).collect())
+}
+
+/// Replaces the standard views of a scene directory's state in `dir/renders/`, recorded in
+/// the scene's manifest.
 pub fn write_standard_views(dir: &Path, state: &SceneState) -> Result<Vec<PathBuf>, RenderError> {
-    write_views(&dir.join("renders"), state)
+    let out_dir = dir.join("renders");
+    let files = encoded_views(state)?;
+    replace_folder(dir, &out_dir, &files)?;
+    Ok(files.into_iter().map(|(p, _)| out_dir.join(p)).collect())
 }

@@ -2,4 +2,5 @@
 
 pub mod base64;
 pub mod fsx;
+pub mod http_body;
 pub mod png;

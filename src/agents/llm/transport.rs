@@ -14,6 +14,10 @@ use serde_json::{Value, json};
 
 use super::{LlmConfig, LlmError};
 use crate::scene::StageUsage;
+use crate::util::http_body::{BodyError, read_limited};
+
+/// Largest chat-completions reply accepted, bytes; a longer one is a failed attempt.
+const MAX_REPLY_BYTES: usize = 16 << 20;
 
 /// Which stage and role a request belongs to (for the log and accounting).
 #[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
@@ -181,8 +185,9 @@ impl Transport for HttpTransport {
                     .get("retry-after")
                     .and_then(|v| v.to_str().ok())
                     .and_then(|v| v.trim().parse::<f64>().ok());
-                let body = resp.text().await?;
-                Ok::<_, reqwest::Error>((status, retry_after, body))
+                let body = read_limited(resp, MAX_REPLY_BYTES).await?;
+                let body = String::from_utf8_lossy(&body).into_owned();
+                Ok::<_, BodyError>((status, retry_after, body))
             });
             let (error, status, retry_after) = match outcome {
                 Ok((200..=299, _, body)) => match serde_json::from_str::<Value>(&body) {

@@ -22,15 +22,21 @@ use super::ExternalError;
 use super::import::{Axis, ImportOptions, import_parts};
 use crate::assets::Asset;
 use crate::assets::procedural::SupportClass;
+use crate::util::http_body::read_limited;
 
 /// Protocol version sent with every request.
 pub const PROTOCOL: u32 = 1;
+
+/// Largest model accepted from a backend by default, bytes (a detailed GLB with textures is
+/// a few tens of MB).
+pub const MAX_MODEL_BYTES: usize = 256 << 20;
 
 /// A text-to-3D backend endpoint.
 #[derive(Debug, Clone)]
 pub struct HttpBackend {
     url: String,
     timeout: Duration,
+    max_bytes: usize,
 }
 
 impl HttpBackend {
@@ -39,7 +45,14 @@ impl HttpBackend {
         HttpBackend {
             url: url.to_string(),
             timeout,
+            max_bytes: MAX_MODEL_BYTES,
         }
+    }
+
+    /// The same backend with another limit on the size of a model, bytes.
+    pub fn with_max_bytes(mut self, max_bytes: usize) -> HttpBackend {
+        self.max_bytes = max_bytes;
+        self
     }
 
     /// The endpoint.
@@ -65,6 +78,7 @@ impl HttpBackend {
         });
         let url = self.url.clone();
         let timeout = self.timeout;
+        let max_bytes = self.max_bytes;
         // A private single-threaded runtime on its own thread: callable from sync code and
         // from inside another runtime alike.
         let worker =
@@ -106,8 +120,8 @@ impl HttpBackend {
                         .and_then(|v| v.to_str().ok())
                         .unwrap_or("")
                         .to_string();
-                    let bytes = resp.bytes().await.map_err(|e| {
-                        if timed_out(&e) {
+                    let bytes = read_limited(resp, max_bytes).await.map_err(|e| {
+                        if e.is_timeout() {
                             ExternalError::Timeout {
                                 url: url.clone(),
                                 seconds: timeout.as_secs_f64(),
@@ -119,7 +133,7 @@ impl HttpBackend {
                             }
                         }
                     })?;
-                    Ok((status, ctype, bytes.to_vec()))
+                    Ok((status, ctype, bytes))
                 })
             });
         let (status, ctype, bytes) = worker.join().map_err(|_| ExternalError::Backend {

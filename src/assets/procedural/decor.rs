@@ -11,6 +11,9 @@ use super::shapes;
 use super::{GenContext, Generated, GeneratorFn};
 use crate::geometry::{ConvexPiece, GeometryError, mesh};
 
+/// Silvered glass as a diffuse colour: a light blue-grey.
+const MIRROR_GLASS: [f64; 3] = [0.78, 0.83, 0.86];
+
 pub(super) const GENERATORS: &[(&str, GeneratorFn)] = &[
     ("vase", vase),
     ("flowers", flowers),
@@ -167,7 +170,8 @@ fn paper_roll(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     single(b.finish()?, vec![])
 }
 
-/// Picture frame standing on a table: a frame with a photo, leaning back on a strut.
+/// Picture frame standing on a table: a frame with a photo, leaning back on a strut. Variant
+/// `mirror`: a table (hand) mirror, the same frame with a silvered glass face.
 fn picture_frame(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
     let mut b = body(ctx);
@@ -189,7 +193,12 @@ fn picture_frame(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         [w * 0.75, 0.001, fh * 0.75],
     )
     .transformed(&pose);
-    b.add_visual(photo, ctx.palette(1));
+    let face = if ctx.variant == "mirror" {
+        MIRROR_GLASS
+    } else {
+        ctx.palette(1)
+    };
+    b.add_visual(photo, face);
     b.add_rod(
         [0.0, d / 2.0 - t - fh * 0.3 * tilt.sin(), fh * 0.3],
         [0.0, -d / 2.0 + 0.004, 0.004],

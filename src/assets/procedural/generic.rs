@@ -128,7 +128,7 @@ pub fn build_generic(
     };
     let generated = generic(&mut ctx).map_err(|source| AssetError::Geometry {
         asset: id.clone(),
-        source,
+        cause: source,
     })?;
     let mut asset = Asset {
         id,

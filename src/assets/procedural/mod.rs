@@ -572,7 +572,7 @@ pub fn build_styled(request: &AssetRequest, style: Option<&Style>) -> Result<Ass
     };
     let generated = (p.gen_fn)(&mut ctx).map_err(|source| AssetError::Geometry {
         asset: p.id.clone(),
-        source,
+        cause: source,
     })?;
     let kind = if generated.joints.is_empty() {
         p.prior.kind
