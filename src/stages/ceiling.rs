@@ -97,7 +97,7 @@ fn try_hang(
     }
     let bottom = room.wall_height - h;
     for (id, f) in floor_footprints(state) {
-        if f.overlaps(&fp, 0.0) && f.z[1] + 0.1 > bottom {
+        if f.overlaps(&fp, 0.0) && f.z[1] + OVER_FURNITURE_M > bottom {
             return Err(ToolError::failed(format!(
                 "a {} there would hit {id}",
                 routed.category
@@ -167,6 +167,52 @@ pub fn toolbox() -> Toolbox<StageState> {
     t.add("hang_from_ceiling", "Hang an object from the ceiling at room coordinates; refuses spots without head room or above tall furniture.", Access::Modify, hang);
     t.add("hang_above", "Hang an object from the ceiling centred above a piece of furniture (a pendant light above a table).", Access::Modify, hang_above);
     t
+}
+
+/// Clearance of a ceiling object over the top of furniture below it, metres (what
+/// `hang_from_ceiling` enforces).
+const OVER_FURNITURE_M: f64 = 0.1;
+
+/// Ceiling objects of the room whose bottom is below the head room, or, over furniture,
+/// closer than the clearance to its top; each an issue. Returns `(low, checked)`.
+fn low_hanging(state: &StageState, issues: &mut Vec<Issue>) -> (usize, usize) {
+    let furniture = floor_footprints(state);
+    let mut low = 0;
+    let mut checked = 0;
+    for o in state
+        .room_objects()
+        .filter(|o| o.kind == ObjectKind::Ceiling)
+    {
+        let Some(rec) = state.scene.scene.assets.get(&o.asset) else {
+            continue;
+        };
+        checked += 1;
+        let mut fp = Footprint::of(rec, &o.world_from_object);
+        let bottom = fp.z[0];
+        // Compare in plan only: any furniture below, whatever its height.
+        fp.z = [f64::MIN, f64::MAX];
+        let below = furniture
+            .iter()
+            .filter(|(_, f)| fp.overlaps(f, 0.0))
+            .map(|(_, f)| f.z[1])
+            .fold(None, |m: Option<f64>, z| Some(m.map_or(z, |m| m.max(z))));
+        let (needed, what) = match below {
+            Some(top) => (top + OVER_FURNITURE_M, "the furniture below"),
+            None => (HEAD_ROOM, "the floor"),
+        };
+        if bottom < needed - 1e-6 {
+            low += 1;
+            issues.push(Issue {
+                objects: vec![o.id.clone()],
+                description: format!(
+                    "{} hangs {:.2} m low over {what}; raise it",
+                    o.id,
+                    needed - bottom
+                ),
+            });
+        }
+    }
+    (low, checked)
 }
 
 /// The built-in ceiling designer.
@@ -276,7 +322,7 @@ impl Critic<StageState> for BuiltinCeilingCritic {
             &wants,
             ObjectKind::Ceiling,
             &mut issues,
-        );
+        )?;
         let room = state
             .room()
             .map_err(|e| AgentError::Unusable {
@@ -310,6 +356,12 @@ impl Critic<StageState> for BuiltinCeilingCritic {
             }
             10.0 - 20.0 * (off - 0.15).max(0.0)
         };
+        let (low, checked) = low_hanging(state, &mut issues);
+        let logic = if checked == 0 {
+            10.0
+        } else {
+            10.0 - 10.0 * low as f64 / checked as f64
+        };
         let s = |c: &str, v: f64, r: String| Score {
             category: c.into(),
             score: v.round().clamp(0.0, 10.0) as u8,
@@ -320,8 +372,11 @@ impl Critic<StageState> for BuiltinCeilingCritic {
                 pf,
                 s(
                     "placement_logic",
-                    10.0,
-                    "head room and furniture clearance enforced at placement".into(),
+                    logic,
+                    format!(
+                        "{low} of {checked} ceiling objects hang lower than {HEAD_ROOM:.1} m \
+                         over the floor or {OVER_FURNITURE_M:.1} m over the furniture below"
+                    ),
                 ),
                 s(
                     "coverage",

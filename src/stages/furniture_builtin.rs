@@ -13,15 +13,19 @@ use crate::agents::{
     AgentCx, AgentError, Critic, Critique, DesignRequest, Designer, Issue, Role, Score,
 };
 
-/// Categories that chairs sit around.
-const SEAT_PARENTS: &[&str] = &[
-    "table",
-    "desk",
-    "counter",
-    "bar counter",
-    "dining table",
-    "conference table",
-];
+/// Whether a piece of this category is a seat that faces a table (`chair`, `dining_chair`,
+/// `bar_stool`).
+fn is_seat(category: &str) -> bool {
+    let head = category.rsplit('_').next().unwrap_or(category);
+    matches!(head, "chair" | "stool")
+}
+
+/// Whether chairs sit around a piece of this category: any table, desk, counter or island
+/// (categories are snake_case nouns: `dining_table`, `bar_counter`, `kitchen_island`).
+fn is_seat_parent(category: &str) -> bool {
+    let head = category.rsplit('_').next().unwrap_or(category);
+    matches!(head, "table" | "desk" | "counter" | "island" | "bar")
+}
 
 /// The built-in furniture designer.
 #[derive(Debug, Default)]
@@ -323,11 +327,14 @@ impl Critic<StageState> for BuiltinFurnitureCritic {
         let parents: Vec<&Value> = furniture
             .iter()
             .copied()
-            .filter(|o| SEAT_PARENTS.contains(&o["category"].as_str().unwrap_or_default()))
+            .filter(|o| is_seat_parent(o["category"].as_str().unwrap_or_default()))
             .collect();
         let mut seats = 0;
         let mut facing = 0;
-        for chair in furniture.iter().filter(|o| o["category"] == "chair") {
+        for chair in furniture
+            .iter()
+            .filter(|o| is_seat(o["category"].as_str().unwrap_or_default()))
+        {
             let (x, y, yaw) = (
                 chair["x"].as_f64().unwrap_or(0.0),
                 chair["y"].as_f64().unwrap_or(0.0),

@@ -443,15 +443,21 @@ fn requested_score(
     (10.0 * cov, format!("{got} of {wanted} requested present"))
 }
 
+/// Penetrating pairs involving an object of `kind`, each an issue. A collision check that
+/// fails makes the critique unusable: it is never counted as no collisions.
 fn collisions_of(
     state: &mut StageState,
     cx: &mut AgentCx<'_, StageState>,
     kind: ObjectKind,
     issues: &mut Vec<Issue>,
-) -> usize {
-    let Ok(v) = cx.call(state, Role::Critic, "check_collisions", json!({})) else {
-        return 0;
-    };
+) -> Result<usize, AgentError> {
+    let v = cx
+        .call(state, Role::Critic, "check_collisions", json!({}))
+        .map_err(|e| AgentError::Unusable {
+            role: "critic",
+            stage: kind.as_str().into(),
+            message: format!("the collision check failed: {}", e.message),
+        })?;
     let mut n = 0;
     for p in v["collisions"].as_array().into_iter().flatten() {
         let ids: Vec<String> = ["a", "b"]
@@ -467,6 +473,38 @@ fn collisions_of(
                 objects: ids.clone(),
                 description: format!("{} overlap; move one", ids.join(" and ")),
             });
+        }
+    }
+    Ok(n)
+}
+
+/// Closest edge-to-edge gap at which two wall objects at overlapping heights still read as
+/// separate pieces, metres.
+const WALL_GAP_M: f64 = 0.08;
+
+/// Pairs of the room's wall objects closer than [`WALL_GAP_M`], each an issue.
+fn crowded_wall_pairs(state: &StageState, issues: &mut Vec<Issue>) -> usize {
+    let mounted: Vec<(String, Footprint)> = state
+        .room_objects()
+        .filter(|o| o.kind == ObjectKind::Wall)
+        .filter_map(|o| {
+            let rec = state.scene.scene.assets.get(&o.asset)?;
+            Some((o.id.clone(), Footprint::of(rec, &o.world_from_object)))
+        })
+        .collect();
+    let mut n = 0;
+    for (i, (a, fa)) in mounted.iter().enumerate() {
+        for (b, fb) in &mounted[i + 1..] {
+            if fa.overlaps(fb, WALL_GAP_M) {
+                n += 1;
+                issues.push(Issue {
+                    objects: vec![a.clone(), b.clone()],
+                    description: format!(
+                        "{a} and {b} are closer than {:.0} cm; space them",
+                        WALL_GAP_M * 100.0
+                    ),
+                });
+            }
         }
     }
     n
@@ -517,9 +555,12 @@ impl Critic<StageState> for BuiltinWallCritic {
         } else {
             10.0 - 10.0 * odd as f64 / mounted.len() as f64
         };
+        // Aesthetics, measured: crowding (pieces closer than a hand's width) and a wall left
+        // bare when wall objects were planned.
+        let crowded = crowded_wall_pairs(state, &mut issues);
         let bare = mounted.is_empty() && !wants.is_empty();
-        let aesthetics = if bare { 4.0 } else { 9.0 };
-        let n = collisions_of(state, cx, ObjectKind::Wall, &mut issues);
+        let aesthetics = 10.0 - 3.0 * crowded as f64 - if bare { 6.0 } else { 0.0 };
+        let n = collisions_of(state, cx, ObjectKind::Wall, &mut issues)?;
         Ok(Critique {
             scores: vec![
                 clamp_score("prompt_following", pf, pf_reason),
@@ -531,7 +572,16 @@ impl Critic<StageState> for BuiltinWallCritic {
                 clamp_score(
                     "aesthetics",
                     aesthetics,
-                    format!("{} wall objects", mounted.len()),
+                    format!(
+                        "{} wall objects, {crowded} pairs closer than {:.0} cm{}",
+                        mounted.len(),
+                        WALL_GAP_M * 100.0,
+                        if bare {
+                            ", none of the planned ones hung"
+                        } else {
+                            ""
+                        }
+                    ),
                 ),
                 clamp_score(
                     "physical_feasibility",
@@ -551,15 +601,15 @@ pub(crate) fn requested_and_collisions(
     wants: &[super::plan::Want],
     kind: ObjectKind,
     issues: &mut Vec<Issue>,
-) -> (Score, Score) {
+) -> Result<(Score, Score), AgentError> {
     let (pf, r) = requested_score(state, wants, issues);
-    let n = collisions_of(state, cx, kind, issues);
-    (
+    let n = collisions_of(state, cx, kind, issues)?;
+    Ok((
         clamp_score("prompt_following", pf, r),
         clamp_score(
             "physical_feasibility",
             10.0 - 3.0 * n as f64,
             format!("{n} penetrating pairs"),
         ),
-    )
+    ))
 }
