@@ -8,6 +8,7 @@ use clap::{Parser, Subcommand};
 use serde_json::json;
 
 use scenesmith::agents::llm::LlmConfig;
+use scenesmith::export::ExportSet;
 use scenesmith::physics::Bridge;
 use scenesmith::pipeline::{self, BackendChoice, GenerateOptions, PipelineError};
 
@@ -61,8 +62,8 @@ enum Command {
         llm: LlmArgs,
         /// Exports to write into DIR/export: a comma-separated list of mjcf, usd, glb, or
         /// all / none.
-        #[arg(long, default_value = "all")]
-        export: String,
+        #[arg(long, default_value = "all", value_parser = parse_exports)]
+        export: ExportSet,
     },
     /// Write MuJoCo (MJCF), USD (UsdPhysics) and GLB exports of a scene directory; with
     /// --check, load them in MuJoCo, usd-core and Drake and fail on any mismatch.
@@ -70,8 +71,8 @@ enum Command {
         /// Scene directory.
         dir: PathBuf,
         /// Formats: a comma-separated list of mjcf, usd, glb, or all.
-        #[arg(long, default_value = "all")]
-        formats: String,
+        #[arg(long, default_value = "all", value_parser = parse_formats)]
+        formats: ExportSet,
         /// Run the conformance gate (MuJoCo simulation, USD physics schema, Drake load).
         #[arg(long)]
         check: bool,
@@ -115,12 +116,12 @@ enum Command {
         /// Output directory (replaced if it holds a previous asset).
         #[arg(long, short)]
         out: PathBuf,
-        /// Stage to route for: furniture, wall, ceiling or manipuland (guessed when absent).
-        #[arg(long)]
-        stage: Option<String>,
+        /// Stage to route for (guessed from the noun when absent).
+        #[arg(long, value_enum)]
+        stage: Option<StageArg>,
         /// Target size "W,D,H" in metres.
-        #[arg(long)]
-        size: Option<String>,
+        #[arg(long, value_parser = parse_size)]
+        size: Option<[f64; 3]>,
         /// Seed.
         #[arg(long, default_value_t = 0)]
         seed: u64,
@@ -168,8 +169,8 @@ enum Command {
         no_stb: bool,
         /// Contact model(s) of the stability simulation: Drake's default plant on the files as
         /// written (metrics `stb`), point contact as in SceneEval (`stb_point`), or both.
-        #[arg(long, default_value = "both", value_parser = ["both", "as-written", "point"])]
-        contact: String,
+        #[arg(long, value_enum, default_value_t = ContactArg::Both)]
+        contact: ContactArg,
         /// Simulate the whole 5 s even when everything is at rest earlier.
         #[arg(long)]
         full_stb: bool,
@@ -187,6 +188,80 @@ enum Command {
         #[arg(long)]
         png: Option<PathBuf>,
     },
+}
+
+/// An error in what the user asked for (a bad prompt, a file of requirements that does not
+/// parse, a request no stage can place): printed once by `main`, exit code 2. Every other
+/// error exits 1.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+struct UsageError(String);
+
+/// Returns `e` as a usage error (exit code 2).
+fn usage(e: impl std::fmt::Display) -> anyhow::Error {
+    UsageError(e.to_string()).into()
+}
+
+/// `--stage` of `asset`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum StageArg {
+    Furniture,
+    Wall,
+    Ceiling,
+    Manipuland,
+}
+
+impl From<StageArg> for scenesmith::assets::router::Stage {
+    fn from(s: StageArg) -> Self {
+        use scenesmith::assets::router::Stage;
+        match s {
+            StageArg::Furniture => Stage::Furniture,
+            StageArg::Wall => Stage::Wall,
+            StageArg::Ceiling => Stage::Ceiling,
+            StageArg::Manipuland => Stage::Manipuland,
+        }
+    }
+}
+
+/// `--contact` of `eval`: which stability simulations to run.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq)]
+enum ContactArg {
+    /// Drake's default plant on the files as written, and point contact.
+    Both,
+    /// Drake's default plant on the files as written (`stb`).
+    AsWritten,
+    /// Point contact as in SceneEval (`stb_point`).
+    Point,
+}
+
+/// `--export` of `generate`: a list of formats, `all` or `none`.
+fn parse_exports(s: &str) -> Result<ExportSet, String> {
+    ExportSet::parse(s).map_err(|e| e.to_string())
+}
+
+/// `--formats` of `export`: a list of formats or `all`; selecting nothing is an error.
+fn parse_formats(s: &str) -> Result<ExportSet, String> {
+    let set = parse_exports(s)?;
+    if set.is_empty() {
+        return Err("selects nothing".into());
+    }
+    Ok(set)
+}
+
+/// `--size W,D,H`: three positive numbers in metres.
+fn parse_size(s: &str) -> Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| "three numbers in metres, e.g. 1.2,0.8,0.75".to_string())?;
+    let size: [f64; 3] = v
+        .try_into()
+        .map_err(|_| "exactly three numbers, W,D,H".to_string())?;
+    if size.iter().any(|x| !x.is_finite() || *x <= 0.0) {
+        return Err("sizes must be positive".into());
+    }
+    Ok(size)
 }
 
 /// Language-model backend options (the built-in offline backend is used without them).
@@ -268,8 +343,7 @@ fn run_generate(cli_json: bool, opts: GenerateOptions) -> anyhow::Result<ExitCod
             | PipelineError::UnusablePrompt(_)
             | PipelineError::NotUnderstood(_)),
         ) => {
-            eprintln!("error: {e}");
-            return Ok(ExitCode::from(2));
+            return Err(usage(e));
         }
         Err(e) => {
             return Err(e).context("generate failed; the output directory was left as it was");
@@ -436,15 +510,15 @@ fn run_eval(
     dir: PathBuf,
     robot_radius: f64,
     no_stb: bool,
-    contact: &str,
+    contact: ContactArg,
     full_stb: bool,
 ) -> anyhow::Result<ExitCode> {
     use scenesmith::eval::{self, EvalOptions, StabilityOptions};
     use scenesmith::physics::settle::ContactModel;
     let stb_contacts = match contact {
-        "as-written" => vec![ContactModel::AsWritten],
-        "point" => vec![ContactModel::Point],
-        _ => vec![ContactModel::AsWritten, ContactModel::Point],
+        ContactArg::AsWritten => vec![ContactModel::AsWritten],
+        ContactArg::Point => vec![ContactModel::Point],
+        ContactArg::Both => vec![ContactModel::AsWritten, ContactModel::Point],
     };
     let opts = EvalOptions {
         robot_radius_m: robot_radius,
@@ -478,8 +552,7 @@ fn run_requirements(cli_json: bool, dir: PathBuf, file: PathBuf) -> anyhow::Resu
     {
         Ok(r) => r,
         Err(e) => {
-            eprintln!("error: requirements file {}: {e}", file.display());
-            return Ok(ExitCode::from(2));
+            return Err(usage(format!("requirements file {}: {e}", file.display())));
         }
     };
     let scene = scenesmith::formats::scene_dir::read_scene(&dir)
@@ -503,23 +576,12 @@ fn run_requirements(cli_json: bool, dir: PathBuf, file: PathBuf) -> anyhow::Resu
 fn run_export(
     cli_json: bool,
     dir: PathBuf,
-    formats: &str,
+    set: ExportSet,
     check: bool,
     no_write: bool,
     seconds: f64,
 ) -> anyhow::Result<ExitCode> {
     use scenesmith::export::{self, conformance};
-    let set = match export::ExportSet::parse(formats) {
-        Ok(s) if !s.is_empty() => s,
-        Ok(_) => {
-            eprintln!("error: --formats selects nothing");
-            return Ok(ExitCode::from(2));
-        }
-        Err(e) => {
-            eprintln!("error: {e}");
-            return Ok(ExitCode::from(2));
-        }
-    };
     let state = scenesmith::formats::scene_dir::load_state(&dir)
         .with_context(|| format!("reading the scene in {}", dir.display()))?;
     let mut out = json!({ "dir": dir });
@@ -579,8 +641,7 @@ fn run_layout(
 ) -> anyhow::Result<ExitCode> {
     use scenesmith::layout;
     if let Err(e) = pipeline::validate_prompt(prompt) {
-        eprintln!("error: {e}");
-        return Ok(ExitCode::from(2));
+        return Err(usage(e));
     }
     let mut log = scenesmith::agents::RunLog::default();
     let out = layout::stage::run_layout(
@@ -681,39 +742,15 @@ fn run_asset(
     cli_json: bool,
     description: String,
     out: PathBuf,
-    stage: Option<String>,
-    size: Option<String>,
+    stage: Option<StageArg>,
+    size: Option<[f64; 3]>,
     seed: u64,
 ) -> anyhow::Result<ExitCode> {
     use scenesmith::assets::{command, router};
-    let stage = match stage.as_deref() {
-        None => None,
-        Some(s) => Some(
-            serde_json::from_value::<router::Stage>(json!(s)).map_err(|_| {
-                anyhow::anyhow!("--stage must be furniture, wall, ceiling or manipuland, not {s:?}")
-            })?,
-        ),
-    };
-    let size = match size {
-        None => None,
-        Some(s) => {
-            let v: Vec<f64> = s
-                .split(',')
-                .map(|x| x.trim().parse::<f64>())
-                .collect::<Result<_, _>>()
-                .map_err(|_| {
-                    anyhow::anyhow!("--size must be three numbers in metres, e.g. 1.2,0.8,0.75")
-                })?;
-            let arr: [f64; 3] = v
-                .try_into()
-                .map_err(|_| anyhow::anyhow!("--size needs exactly three numbers"))?;
-            Some(arr)
-        }
-    };
     let opts = command::AssetOptions {
         description,
         out,
-        stage,
+        stage: stage.map(Into::into),
         size,
         seed,
     };
@@ -726,8 +763,7 @@ fn run_asset(
     let report = match command::make_asset(&opts, &ctx, Some(&preview)) {
         Ok(r) => r,
         Err(command::AssetCommandError::Route(e)) => {
-            eprintln!("error: {e}");
-            return Ok(ExitCode::from(2));
+            return Err(usage(e));
         }
         Err(e) => return Err(e.into()),
     };
@@ -775,8 +811,7 @@ fn run_gallery(
     let report = match write_gallery(&opts) {
         Ok(r) => r,
         Err(e @ GalleryError::NothingMatches(_)) => {
-            eprintln!("error: {e}");
-            return Ok(ExitCode::from(2));
+            return Err(usage(e));
         }
         Err(e) => return Err(e.into()),
     };
@@ -813,36 +848,30 @@ fn main() -> ExitCode {
             no_stb,
             llm,
             export,
-        } => match scenesmith::export::ExportSet::parse(&export) {
-            Ok(exports) => llm.choice().and_then(|backend| {
-                run_generate(
-                    cli.json,
-                    GenerateOptions {
-                        prompt,
-                        seed,
-                        out,
-                        drake_check: !no_check,
-                        render: !no_render,
-                        exports,
-                        backend,
-                        resume,
-                        lenient,
-                        stb: !no_stb,
-                    },
-                )
-            }),
-            Err(e) => {
-                eprintln!("error: {e}");
-                Ok(ExitCode::from(2))
-            }
-        },
+        } => llm.choice().and_then(|backend| {
+            run_generate(
+                cli.json,
+                GenerateOptions {
+                    prompt,
+                    seed,
+                    out,
+                    drake_check: !no_check,
+                    render: !no_render,
+                    exports: export,
+                    backend,
+                    resume,
+                    lenient,
+                    stb: !no_stb,
+                },
+            )
+        }),
         Command::Export {
             dir,
             formats,
             check,
             no_write,
             seconds,
-        } => run_export(cli.json, dir, &formats, check, no_write, seconds),
+        } => run_export(cli.json, dir, formats, check, no_write, seconds),
         Command::Check {
             dir,
             threshold,
@@ -875,14 +904,69 @@ fn main() -> ExitCode {
             no_stb,
             contact,
             full_stb,
-        } => run_eval(cli.json, dir, robot_radius, no_stb, &contact, full_stb),
+        } => run_eval(cli.json, dir, robot_radius, no_stb, contact, full_stb),
         Command::Layout { prompt, seed, png } => run_layout(cli.json, &prompt, seed, png),
     };
     match result {
         Ok(code) => code,
         Err(e) => {
             eprintln!("error: {e:#}");
-            ExitCode::from(1)
+            if e.downcast_ref::<UsageError>().is_some() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::from(1)
+            }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::error::ErrorKind;
+
+    #[test]
+    fn option_values_are_parsed_by_clap_and_bad_ones_are_usage_errors() {
+        assert_eq!(parse_size("1.2, 0.8,0.75"), Ok([1.2, 0.8, 0.75]));
+        for bad in ["1,2", "1,2,3,4", "a,b,c", "1,-2,3", "1,inf,3"] {
+            assert!(parse_size(bad).is_err(), "{bad}");
+        }
+        let parse = |args: &[&str]| Cli::try_parse_from(["scenesmith"].iter().chain(args));
+        let usage = |args: &[&str]| parse(args).err().map(|e| e.kind());
+        assert_eq!(
+            usage(&["asset", "a lamp", "--out", "x", "--stage", "floor"]),
+            Some(ErrorKind::InvalidValue)
+        );
+        assert_eq!(
+            usage(&["asset", "a lamp", "--out", "x", "--size", "1,2"]),
+            Some(ErrorKind::ValueValidation)
+        );
+        assert_eq!(
+            usage(&["export", "d", "--formats", "none"]),
+            Some(ErrorKind::ValueValidation)
+        );
+        assert_eq!(
+            usage(&["generate", "a room", "--out", "d", "--export", "fbx"]),
+            Some(ErrorKind::ValueValidation)
+        );
+        let Ok(Cli {
+            command: Command::Eval { contact, .. },
+            ..
+        }) = parse(&["eval", "d", "--contact", "as-written"])
+        else {
+            panic!("eval parses");
+        };
+        assert_eq!(contact, ContactArg::AsWritten);
+        let Ok(Cli {
+            command: Command::Asset { stage, size, .. },
+            ..
+        }) = parse(&[
+            "asset", "a lamp", "--out", "x", "--stage", "ceiling", "--size", "1,1,1",
+        ])
+        else {
+            panic!("asset parses");
+        };
+        assert!(matches!(stage, Some(StageArg::Ceiling)));
+        assert_eq!(size, Some([1.0, 1.0, 1.0]));
     }
 }

@@ -456,18 +456,17 @@ fn make_backend(
     })
 }
 
-type Finished = (
-    crate::util::fsx::Committed,
-    SceneState,
-    BuildReport,
-    Vec<collision::PairPenetration>,
-    Option<CheckSummary>,
-    Box<(
-        PostProcessReport,
-        Metrics,
-        Vec<crate::export::WrittenExport>,
-    )>,
-);
+/// What [`finish_run`] hands back: the committed scene and everything the summary reports.
+struct Finished {
+    out: crate::util::fsx::Committed,
+    state: SceneState,
+    report: BuildReport,
+    rust_pairs: Vec<collision::PairPenetration>,
+    check: Option<CheckSummary>,
+    post_process: PostProcessReport,
+    metrics: Metrics,
+    exports: Vec<crate::export::WrittenExport>,
+}
 
 /// Writes a built scene into the staging directory, checks it in Drake and commits it.
 fn finish_run(
@@ -558,14 +557,16 @@ fn finish_run(
     // --- end of metrics ---
 
     let out = staging.commit()?;
-    Ok((
+    Ok(Finished {
         out,
         state,
         report,
         rust_pairs,
         check,
-        Box::new((post_process, metrics, exports)),
-    ))
+        post_process,
+        metrics,
+        exports,
+    })
 }
 
 /// Runs the whole pipeline and writes the scene directory.
@@ -610,7 +611,16 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
     let finished = built.and_then(|(state, report)| {
         finish_run(opts, staging, &transport, state, report, &mut timings)
     });
-    let (out, state, report, rust_pairs, check, physics) = match finished {
+    let Finished {
+        out,
+        state,
+        report,
+        rust_pairs,
+        check,
+        post_process,
+        metrics,
+        exports,
+    } = match finished {
         Ok(v) => v,
         Err(e) => {
             let e = if checkpoints.finished().is_empty() {
@@ -660,9 +670,9 @@ pub fn generate(opts: &GenerateOptions) -> Result<GenerateSummary, PipelineError
         notes: report.notes,
         rust_penetrating_pairs: rust_pairs.len(),
         check,
-        post_process: physics.0,
-        metrics: physics.1,
-        exports: physics.2,
+        post_process,
+        metrics,
+        exports,
         timings,
     })
 }

@@ -33,7 +33,10 @@ fn wall_and_ceiling_scores_count_what_hangs_in_the_room() {
         .find(|s| s.category == "placement_logic")
         .unwrap();
     let hung = count(ObjectKind::Ceiling);
-    assert!(hung >= 1, "{hung} ceiling objects");
+    assert!(
+        hung >= 2,
+        "{hung} ceiling objects: the chandelier and the pendant"
+    );
     assert!(
         logic
             .reason

@@ -215,6 +215,10 @@ fn low_hanging(state: &StageState, issues: &mut Vec<Issue>) -> (usize, usize) {
     (low, checked)
 }
 
+/// Cells per side of the finer grid of spots the designer tries when its first spots are
+/// taken.
+const FALLBACK_GRID: usize = 5;
+
 /// The built-in ceiling designer.
 #[derive(Debug, Default)]
 pub struct BuiltinCeilingDesigner;
@@ -287,6 +291,61 @@ impl Designer<StageState> for BuiltinCeilingDesigner {
                             Role::Designer,
                             "hang_from_ceiling",
                             json!({"description": want.description, "x": x, "y": y}),
+                        )
+                        .is_ok()
+                    {
+                        placed += 1;
+                    }
+                }
+            }
+            // A spot of the grid may be taken (a chandelier over the table at the centre):
+            // try a finer grid, nearest the centre first.
+            let mut spots: Vec<[f64; 2]> = (0..FALLBACK_GRID)
+                .flat_map(|i| (0..FALLBACK_GRID).map(move |j| (i, j)))
+                .map(|(i, j)| {
+                    [
+                        frame.size[0] * (i as f64 + 0.5) / FALLBACK_GRID as f64,
+                        frame.size[1] * (j as f64 + 0.5) / FALLBACK_GRID as f64,
+                    ]
+                })
+                .collect();
+            let centre = [frame.size[0] / 2.0, frame.size[1] / 2.0];
+            let dist = |p: &[f64; 2]| (p[0] - centre[0]).hypot(p[1] - centre[1]);
+            spots.sort_by(|a, b| dist(a).total_cmp(&dist(b)));
+            for [x, y] in spots {
+                if placed >= n {
+                    break;
+                }
+                if cx
+                    .call(
+                        state,
+                        Role::Designer,
+                        "hang_from_ceiling",
+                        json!({"description": want.description, "x": x, "y": y}),
+                    )
+                    .is_ok()
+                {
+                    placed += 1;
+                }
+            }
+            // A pendant too long for head room over the floor hangs over furniture: the
+            // largest pieces first (tables, beds, islands).
+            if placed < n {
+                let mut pieces = floor_footprints(state);
+                pieces.sort_by(|a, b| {
+                    let area = |f: &Footprint| f.half[0] * f.half[1];
+                    area(&b.1).total_cmp(&area(&a.1))
+                });
+                for (target, _) in pieces {
+                    if placed >= n {
+                        break;
+                    }
+                    if cx
+                        .call(
+                            state,
+                            Role::Designer,
+                            "hang_above",
+                            json!({"description": want.description, "target": target}),
                         )
                         .is_ok()
                     {
