@@ -277,80 +277,48 @@ impl Designer<StageState> for BuiltinCeilingDesigner {
                 .ceil()
                 .max(1.0) as usize;
             let rows = n.div_ceil(cols);
-            let mut placed = 0;
-            'grid: for r in 0..rows {
-                for c in 0..cols {
-                    if placed >= n {
-                        break 'grid;
-                    }
-                    let x = frame.size[0] * (c as f64 + 0.5) / cols as f64;
-                    let y = frame.size[1] * (r as f64 + 0.5) / rows as f64;
-                    if cx
-                        .call(
-                            state,
-                            Role::Designer,
-                            "hang_from_ceiling",
-                            json!({"description": want.description, "x": x, "y": y}),
-                        )
-                        .is_ok()
-                    {
-                        placed += 1;
-                    }
-                }
-            }
+            let cell = |i: usize, j: usize, cols: usize, rows: usize| {
+                [
+                    frame.size[0] * (i as f64 + 0.5) / cols as f64,
+                    frame.size[1] * (j as f64 + 0.5) / rows as f64,
+                ]
+            };
+            let grid = (0..rows).flat_map(|r| (0..cols).map(move |c| cell(c, r, cols, rows)));
             // A spot of the grid may be taken (a chandelier over the table at the centre):
-            // try a finer grid, nearest the centre first.
-            let mut spots: Vec<[f64; 2]> = (0..FALLBACK_GRID)
+            // then a finer grid, nearest the centre first.
+            let mut finer: Vec<[f64; 2]> = (0..FALLBACK_GRID)
                 .flat_map(|i| (0..FALLBACK_GRID).map(move |j| (i, j)))
-                .map(|(i, j)| {
-                    [
-                        frame.size[0] * (i as f64 + 0.5) / FALLBACK_GRID as f64,
-                        frame.size[1] * (j as f64 + 0.5) / FALLBACK_GRID as f64,
-                    ]
-                })
+                .map(|(i, j)| cell(i, j, FALLBACK_GRID, FALLBACK_GRID))
                 .collect();
             let centre = [frame.size[0] / 2.0, frame.size[1] / 2.0];
             let dist = |p: &[f64; 2]| (p[0] - centre[0]).hypot(p[1] - centre[1]);
-            spots.sort_by(|a, b| dist(a).total_cmp(&dist(b)));
-            for [x, y] in spots {
+            finer.sort_by(|a, b| dist(a).total_cmp(&dist(b)));
+            // A pendant too long for head room over the floor hangs over furniture: the
+            // largest pieces first (tables, beds, islands).
+            let mut pieces = floor_footprints(state);
+            let area = |f: &Footprint| f.half[0] * f.half[1];
+            pieces.sort_by(|a, b| area(&b.1).total_cmp(&area(&a.1)));
+            let d = &want.description;
+            let tries = grid
+                .chain(finer)
+                .map(|[x, y]| {
+                    (
+                        "hang_from_ceiling",
+                        json!({"description": d, "x": x, "y": y}),
+                    )
+                })
+                .chain(
+                    pieces
+                        .into_iter()
+                        .map(|(t, _)| ("hang_above", json!({"description": d, "target": t}))),
+                );
+            let mut placed = 0;
+            for (tool, args) in tries {
                 if placed >= n {
                     break;
                 }
-                if cx
-                    .call(
-                        state,
-                        Role::Designer,
-                        "hang_from_ceiling",
-                        json!({"description": want.description, "x": x, "y": y}),
-                    )
-                    .is_ok()
-                {
+                if cx.call(state, Role::Designer, tool, args).is_ok() {
                     placed += 1;
-                }
-            }
-            // A pendant too long for head room over the floor hangs over furniture: the
-            // largest pieces first (tables, beds, islands).
-            if placed < n {
-                let mut pieces = floor_footprints(state);
-                pieces.sort_by(|a, b| {
-                    let area = |f: &Footprint| f.half[0] * f.half[1];
-                    area(&b.1).total_cmp(&area(&a.1))
-                });
-                for (target, _) in pieces {
-                    if placed >= n {
-                        break;
-                    }
-                    if cx
-                        .call(
-                            state,
-                            Role::Designer,
-                            "hang_above",
-                            json!({"description": want.description, "target": target}),
-                        )
-                        .is_ok()
-                    {
-                        placed += 1;
-                    }
                 }
             }
         }
