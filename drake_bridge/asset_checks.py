@@ -17,6 +17,7 @@ Models are laid out on a grid whose pitch is the largest `footprint` (a model's 
 extent in metres, default 3) plus a metre, so they never touch each other.
 """
 
+import dataclasses
 import math
 import os
 
@@ -35,34 +36,26 @@ from pydrake.all import (
 from pydrake.geometry import Role
 
 from drake_bridge.errors import BadRequest, FileMissing, ModelError
+from drake_bridge.protocol import in_range
 
 GRAVITY = 9.81
 
 
 def _models(args):
-    models = args.get("models")
-    if not isinstance(models, list) or not models:
+    """The request's models (protocol.AssetModel) with absolute, existing sdf paths."""
+    if not args.models:
         raise BadRequest("models must be a non-empty list of {name, sdf}")
     out = []
     seen = set()
-    for m in models:
-        if not isinstance(m, dict) or not isinstance(m.get("name"), str) or not isinstance(m.get("sdf"), str):
-            raise BadRequest("every model needs a string name and a string sdf path")
-        if m["name"] in seen:
-            raise BadRequest(f"model name {m['name']!r} appears twice")
-        seen.add(m["name"])
-        path = os.path.abspath(m["sdf"])
+    for m in args.models:
+        if m.name in seen:
+            raise BadRequest(f"model name {m.name!r} appears twice")
+        seen.add(m.name)
+        path = os.path.abspath(m.sdf)
         if not os.path.isfile(path):
             raise FileMissing(f"model file not found: {path}")
-        out.append(dict(m, sdf=path))
+        out.append(dataclasses.replace(m, sdf=path))
     return out
-
-
-def _number(args, key, default, lo, hi):
-    v = args.get(key, default)
-    if not isinstance(v, (int, float)) or not (lo <= v <= hi):
-        raise BadRequest(f"{key} must be a number in [{lo}, {hi}]")
-    return float(v)
 
 
 def _new_plant(time_step):
@@ -80,10 +73,10 @@ def _new_plant(time_step):
 
 def _add(plant, parser, model):
     """Adds one model file; returns its model instance, renamed to the model's name."""
-    instances = parser.AddModels(model["sdf"])
+    instances = parser.AddModels(model.sdf)
     if len(instances) != 1:
-        raise ModelError(f"{model['sdf']}: expected one model, got {len(instances)}")
-    plant.RenameModelInstance(instances[0], model["name"])
+        raise ModelError(f"{model.sdf}: expected one model, got {len(instances)}")
+    plant.RenameModelInstance(instances[0], model.name)
     return instances[0]
 
 
@@ -121,7 +114,7 @@ def op_assets_load(args):
         _, plant, scene_graph, parser = _new_plant(0.0)
         instances = [(_add(plant, parser, m), m) for m in models]
         plant.Finalize()
-        return {"models": {m["name"]: _summary(plant, scene_graph, mi) for mi, m in instances}}
+        return {"models": {m.name: _summary(plant, scene_graph, mi) for mi, m in instances}}
     except (RuntimeError, ModelError):
         pass
     out = {}
@@ -130,9 +123,9 @@ def op_assets_load(args):
             _, plant, scene_graph, parser = _new_plant(0.0)
             mi = _add(plant, parser, m)
             plant.Finalize()
-            out[m["name"]] = _summary(plant, scene_graph, mi)
+            out[m.name] = _summary(plant, scene_graph, mi)
         except (RuntimeError, ModelError) as e:
-            out[m["name"]] = {"ok": False, "error": str(e)}
+            out[m.name] = {"ok": False, "error": str(e)}
     return {"models": out}
 
 
@@ -143,16 +136,16 @@ def _grid(n, spacing):
 
 def _spacing(models):
     """Grid pitch: the largest `footprint` (horizontal extent, m) given, plus a metre."""
-    sizes = [m.get("footprint") for m in models]
-    if any(s is not None and (not isinstance(s, (int, float)) or s <= 0) for s in sizes):
+    sizes = [m.footprint for m in models]
+    if any(s is not None and s <= 0 for s in sizes):
         raise BadRequest("footprint must be a positive number of metres")
     return float(max((s for s in sizes if s is not None), default=3.0)) + 1.0
 
 
 def op_assets_drop(args):
     models = _models(args)
-    duration = _number(args, "duration", 2.0, 0.0, 30.0)
-    time_step = _number(args, "time_step", 1e-3, 1e-4, 1e-2)
+    duration = in_range("duration", args.duration, 0.0, 30.0)
+    time_step = in_range("time_step", args.time_step, 1e-4, 1e-2)
     builder, plant, scene_graph, parser = _new_plant(time_step)
     try:
         instances = [(_add(plant, parser, m), m) for m in models]
@@ -178,16 +171,16 @@ def op_assets_drop(args):
     simulator = Simulator(diagram)
     ctx = simulator.get_mutable_context()
     pctx = plant.GetMyMutableContextFromRoot(ctx)
-    start = {m["name"]: plant.EvalBodyPoseInWorld(pctx, root) for root, m, _ in roots}
+    start = {m.name: plant.EvalBodyPoseInWorld(pctx, root) for root, m, _ in roots}
     simulator.AdvanceTo(duration)
     out = {}
     for root, m, _ in roots:
-        X0 = start[m["name"]]
+        X0 = start[m.name]
         X = plant.EvalBodyPoseInWorld(pctx, root)
         z_axis = X.rotation().matrix()[:, 2]
         tilt = float(math.acos(max(-1.0, min(1.0, z_axis[2]))))
         d = X.translation() - X0.translation()
-        out[m["name"]] = {
+        out[m.name] = {
             "tilt_rad": tilt,
             "rotation_rad": float(X0.rotation().InvertAndCompose(X.rotation()).ToAngleAxis().angle()),
             "horizontal_m": float(np.hypot(d[0], d[1])),
@@ -209,9 +202,9 @@ def _lever(plant, pctx, joint):
 
 def op_assets_push(args):
     models = _models(args)
-    duration = _number(args, "duration", 1.0, 0.0, 30.0)
-    time_step = _number(args, "time_step", 1e-3, 1e-4, 1e-2)
-    scale = _number(args, "force_scale", 2.0, 0.0, 100.0)
+    duration = in_range("duration", args.duration, 0.0, 30.0)
+    time_step = in_range("time_step", args.time_step, 1e-4, 1e-2)
+    scale = in_range("force_scale", args.force_scale, 0.0, 100.0)
     builder, plant, scene_graph, parser = _new_plant(time_step)
     try:
         instances = [(_add(plant, parser, m), m) for m in models]
@@ -229,7 +222,7 @@ def op_assets_push(args):
         ids = []
         for b in _bodies(plant, mi):
             ids += inspector.GetGeometries(plant.GetBodyFrameIdOrThrow(b.index()), Role.kProximity)
-        geometry_of[m["name"]] = ids
+        geometry_of[m.name] = ids
         scene_graph.collision_filter_manager().Apply(CollisionFilterDeclaration().AllowWithin(GeometrySet(ids)))
     diagram = builder.Build()
     simulator = Simulator(diagram)
@@ -238,7 +231,7 @@ def op_assets_push(args):
     tau = np.zeros(plant.num_velocities())
     plan = []
     for mi, m in instances:
-        efforts = m.get("efforts") or {}
+        efforts = m.efforts or {}
         for j in _joints(plant, mi):
             child_weight = j.child_body().default_mass() * GRAVITY
             if j.name() in efforts:
@@ -248,7 +241,7 @@ def op_assets_push(args):
             else:
                 f = scale * child_weight * max(_lever(plant, pctx, j), 0.05) + 0.1
             tau[j.velocity_start()] = f
-            plan.append((m["name"], j, f))
+            plan.append((m.name, j, f))
     plant.get_applied_generalized_force_input_port().FixValue(pctx, tau)
     owner = {}
     for name, ids in geometry_of.items():

@@ -11,27 +11,31 @@ import time
 
 import numpy as np
 
-from drake_bridge.errors import BadRequest, FileMissing, ModelError
+from drake_bridge.errors import BadRequest, ModelError
+from drake_bridge.plant_cache import existing_file
+from drake_bridge.protocol import in_range
 
 # MuJoCo joint types (mjtJoint).
 _MJ_JOINT = {0: "free", 1: "ball", 2: "slide", 3: "hinge"}
 
 
-def _path_arg(args, key):
-    path = args.get(key)
-    if not isinstance(path, str) or not path:
+def _path_arg(path, key):
+    path = existing_file(path, key)
+    if path is None:
         raise BadRequest(f"argument {key!r} must be a path string")
-    path = os.path.abspath(path)
-    if not os.path.isfile(path):
-        raise FileMissing(f"{key} file not found: {path}")
     return path
 
 
-def _seconds_arg(args, key, default, upper):
-    v = args.get(key, default)
-    if not isinstance(v, (int, float)) or isinstance(v, bool) or not 0 <= v <= upper:
-        raise BadRequest(f"{key} must be a number of seconds in [0, {upper}]")
-    return float(v)
+def _mj_name(model, kind, index):
+    """The name of a MuJoCo object; `world` for body 0 and `#<index>` for an unnamed one."""
+    import mujoco
+
+    name = mujoco.mj_id2name(model, kind, index)
+    if name:
+        return name
+    if kind == mujoco.mjtObj.mjOBJ_BODY and index == 0:
+        return "world"
+    return f"#{index}"
 
 
 def _aabb(points):
@@ -76,7 +80,7 @@ def op_mujoco_check(args):
     try:
         result = _mujoco_check(args)
     except mujoco.FatalError as e:
-        raise ModelError(f"MuJoCo failed on {args.get('xml')}: {e}") from e
+        raise ModelError(f"MuJoCo failed on {args.xml}: {e}") from e
     finally:
         mujoco.set_mju_user_warning(previous)
     result["messages"] = messages
@@ -86,11 +90,9 @@ def op_mujoco_check(args):
 def _mujoco_check(args):
     import mujoco
 
-    path = _path_arg(args, "xml")
-    seconds = _seconds_arg(args, "seconds", 5.0, 120.0)
-    probe = args.get("probe_joints") or {}
-    if not isinstance(probe, dict):
-        raise BadRequest("probe_joints must map joint names to forces")
+    path = _path_arg(args.xml, "xml")
+    seconds = in_range("seconds", args.seconds, 0.0, 120.0)
+    probe = args.probe_joints
     t0 = time.perf_counter()
     try:
         model = mujoco.MjModel.from_xml_path(path)
@@ -111,9 +113,8 @@ def _mujoco_check(args):
         vis_pts = [_mj_geom_points(model, data, g) for g in vis]
         jnt = [j for j in range(model.njnt) if model.jnt_bodyid[j] == b]
         bodies.append({
-            "name": mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, b),
-            "parent": mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY,
-                                        int(model.body_parentid[b])) or "world",
+            "name": _mj_name(model, mujoco.mjtObj.mjOBJ_BODY, b),
+            "parent": _mj_name(model, mujoco.mjtObj.mjOBJ_BODY, int(model.body_parentid[b])),
             "mass": float(model.body_mass[b]),
             "free": any(model.jnt_type[j] == 0 for j in jnt),
             "collision_geoms": len(coll),
@@ -128,9 +129,9 @@ def _mujoco_check(args):
         if kind == "free":
             continue
         joints.append({
-            "name": mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j),
+            "name": _mj_name(model, mujoco.mjtObj.mjOBJ_JOINT, j),
             "type": kind,
-            "body": mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, int(model.jnt_bodyid[j])),
+            "body": _mj_name(model, mujoco.mjtObj.mjOBJ_BODY, int(model.jnt_bodyid[j])),
             "limited": bool(model.jnt_limited[j]),
             "range": [float(v) for v in model.jnt_range[j]],
             "damping": float(model.dof_damping[model.jnt_dofadr[j]]),
@@ -143,8 +144,6 @@ def _mujoco_check(args):
         j = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, name)
         if j < 0:
             raise BadRequest(f"no joint named {name!r} in {path}")
-        if not isinstance(force, (int, float)):
-            raise BadRequest(f"probe force for {name!r} must be a number")
         probe_dofs[name] = (int(model.jnt_dofadr[j]), int(model.jnt_qposadr[j]), float(force))
 
     free_bodies = [i + 1 for i, b in enumerate(bodies) if b["free"]]
@@ -300,10 +299,8 @@ def op_usd_check(args):
     """
     from pxr import Tf, Usd, UsdGeom, UsdPhysics, UsdValidation
 
-    path = _path_arg(args, "usd")
-    groups = args.get("static_prims") or []
-    if not isinstance(groups, list) or not all(isinstance(g, str) for g in groups):
-        raise BadRequest("static_prims must be a list of prim paths")
+    path = _path_arg(args.usd, "usd")
+    groups = args.static_prims
     # Longest first, so a link prim wins over its object prim.
     groups = sorted(groups, key=len, reverse=True)
 
@@ -330,8 +327,7 @@ def op_usd_check(args):
         "up_axis": str(UsdGeom.GetStageUpAxis(stage)),
         "default_prim": str(default_prim.GetPath()) if default_prim else None,
         "has_authored_meters_per_unit": UsdGeom.StageHasAuthoredMetersPerUnit(stage),
-        "custom_layer_data": {k: (v if isinstance(v, (str, int, float)) else str(v))
-                              for k, v in stage.GetRootLayer().customLayerData.items()},
+        "custom_layer_data": {k: str(v) for k, v in stage.GetRootLayer().customLayerData.items()},
     }
     composition_errors = [str(e) for e in stage.GetCompositionErrors()] \
         if hasattr(stage, "GetCompositionErrors") else []

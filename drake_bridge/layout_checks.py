@@ -20,36 +20,27 @@ from pydrake.all import (
 )
 
 from drake_bridge.errors import BadRequest, ModelError
-from drake_bridge.plant_cache import _file_arg
+from drake_bridge.plant_cache import existing_file
 
 
 def _spheres_arg(args):
-    spheres = args.get("spheres")
-    if not isinstance(spheres, list) or not spheres:
+    if not args.spheres:
         raise BadRequest("spheres must be a non-empty list of {name, xyz, radius}")
-    out = []
-    for s in spheres:
-        try:
-            name = str(s["name"])
-            xyz = [float(v) for v in s["xyz"]]
-            radius = float(s.get("radius", 0.1))
-        except (KeyError, TypeError, ValueError) as e:
-            raise BadRequest(f"bad sphere {s!r}: {e}") from e
-        if len(xyz) != 3 or not 0.01 <= radius <= 1.0:
-            raise BadRequest(f"sphere {name!r}: xyz needs 3 numbers, radius 0.01-1.0 m")
-        out.append((name, xyz, radius))
-    if len({n for n, _, _ in out}) != len(out):
+    for s in args.spheres:
+        if not 0.01 <= s.radius <= 1.0:
+            raise BadRequest(f"sphere {s.name!r}: radius must lie in [0.01, 1.0] m")
+    if len({s.name for s in args.spheres}) != len(args.spheres):
         raise BadRequest("sphere names must be unique")
-    return out
+    return [(s.name, list(s.xyz), s.radius) for s in args.spheres]
 
 
 def op_drop_spheres(args):
     """Loads the directives, adds one free sphere per request entry, simulates and reports the
     final sphere positions (and whether each came to rest)."""
-    directives = _file_arg(args, "directives")
-    package_xml = _file_arg(args, "package_xml", required=False)
+    directives = existing_file(args.directives, "directives")
+    package_xml = existing_file(args.package_xml, "package_xml")
     spheres = _spheres_arg(args)
-    duration = float(args.get("duration", 1.5))
+    duration = args.duration
     if not 0.05 <= duration <= 10.0:
         raise BadRequest("duration must be between 0.05 and 10 s")
 

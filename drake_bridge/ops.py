@@ -1,20 +1,19 @@
-"""Bridge operations. Each takes the request's args dict and returns a JSON-able dict."""
+"""Bridge operations. Each takes its protocol dataclass of arguments and returns its reply
+(a protocol dataclass, or data of that shape); `call` validates both at the boundary."""
 
 import importlib.metadata
 import sys
 
 import numpy as np
-from pydrake.all import RigidTransform
-from pydrake.common.eigen_geometry import Quaternion
 from pydrake.geometry import Role
 from pydrake.multibody.tree import ModelInstanceIndex
 
-from drake_bridge import BRIDGE_VERSION, PROTOCOL, asset_checks, layout_checks
+from drake_bridge import BRIDGE_VERSION, PROTOCOL, asset_checks, layout_checks, projection, settle
 from drake_bridge.conformance import op_mujoco_check, op_usd_check
 from drake_bridge.errors import BadRequest
-from drake_bridge.plant_cache import PlantCache
-
-CACHE = PlantCache()
+from drake_bridge.plant_cache import CACHE
+from drake_bridge.protocol import SIGNATURES, dump, in_range, parse
+from drake_bridge.sim_plant import apply_poses, instance_name, is_free, pose_json
 
 
 def drake_version():
@@ -50,23 +49,6 @@ def op_versions(args):
     }
 
 
-def _pose_json(X):
-    q = X.rotation().ToQuaternion()
-    p = X.translation()
-    return {"xyz": [float(v) for v in p], "wxyz": [q.w(), q.x(), q.y(), q.z()]}
-
-
-def _is_free(body):
-    # drake >= 1.52 renamed RigidBody.is_floating() to is_floating_base_body().
-    if hasattr(body, "is_floating_base_body"):
-        return body.is_floating_base_body()
-    return body.is_floating()
-
-
-def _instance_name(plant, body):
-    return plant.GetModelInstanceName(body.model_instance())
-
-
 def op_load(args):
     """Model instances, bodies, joints and free bodies (with their default poses)."""
     scene = CACHE.get(args)
@@ -80,7 +62,7 @@ def op_load(args):
             continue
         bodies = [plant.get_body(b) for b in plant.GetBodyIndices(mi)]
         joints = [plant.get_joint(j) for j in plant.GetJointIndices(mi)]
-        free = [b for b in bodies if _is_free(b)]
+        free = [b for b in bodies if is_free(b)]
         instances.append({
             "name": name,
             "bodies": [b.name() for b in bodies],
@@ -90,7 +72,7 @@ def op_load(args):
                         "upper": [float(v) for v in j.position_upper_limits()]}
                        for j in joints if j.num_positions() > 0 and not j.name().startswith("$")
                        and j.type_name() in ("revolute", "prismatic")],
-            "free_bodies": {b.name(): _pose_json(plant.EvalBodyPoseInWorld(ctx, b))
+            "free_bodies": {b.name(): pose_json(plant.EvalBodyPoseInWorld(ctx, b))
                             for b in free},
             "welded": len(free) == 0,
         })
@@ -107,30 +89,9 @@ def op_load(args):
 
 
 def _positions_arg(args, scene):
-    """Optional override of free-body poses: {"poses": {instance: {body: {xyz, wxyz}}}}."""
-    poses = args.get("poses")
+    """A context with the request's free-body poses (`args.poses`) over the defaults."""
     ctx = scene.context.Clone()
-    if poses is None:
-        return ctx
-    if not isinstance(poses, dict):
-        raise BadRequest("poses must map instance names to {body: {xyz, wxyz}}")
-    plant = scene.plant
-    pctx = scene.plant_context(ctx)
-    for inst_name, bodies in poses.items():
-        if not plant.HasModelInstanceNamed(inst_name):
-            raise BadRequest(f"no model instance named {inst_name!r}")
-        mi = plant.GetModelInstanceByName(inst_name)
-        for body_name, pose in bodies.items():
-            if not plant.HasBodyNamed(body_name, mi):
-                raise BadRequest(f"no body {body_name!r} in {inst_name!r}")
-            body = plant.GetBodyByName(body_name, mi)
-            try:
-                w, x, y, z = pose["wxyz"]
-                q = Quaternion(w, x, y, z)
-                X = RigidTransform(q, np.array(pose["xyz"], dtype=float))
-            except (KeyError, TypeError, ValueError) as e:
-                raise BadRequest(f"bad pose for {inst_name}::{body_name}: {e}") from e
-            plant.SetFreeBodyPose(pctx, body, X)
+    apply_poses(scene.plant, scene.plant_context(ctx), args.poses)
     return ctx
 
 
@@ -148,7 +109,7 @@ def penetration_pairs(scene, ctx, threshold):
     for pp in query.ComputePointPairPenetration():
         ba = plant.GetBodyFromFrameId(inspector.GetFrameId(pp.id_A))
         bb = plant.GetBodyFromFrameId(inspector.GetFrameId(pp.id_B))
-        a, b = _instance_name(plant, ba), _instance_name(plant, bb)
+        a, b = instance_name(plant, ba), instance_name(plant, bb)
         if a == b:
             continue
         key = tuple(sorted((a, b)))
@@ -167,10 +128,8 @@ def penetration_pairs(scene, ctx, threshold):
 
 
 def _threshold(args, default):
-    t = args.get("threshold", default)
-    if not isinstance(t, (int, float)) or t < 0:
-        raise BadRequest("threshold must be a non-negative number of metres")
-    return float(t)
+    t = default if args.threshold is None else args.threshold
+    return in_range("threshold", t, 0.0)
 
 
 def op_penetrations(args):
@@ -186,7 +145,7 @@ def op_collision_report(args):
     ctx = _positions_arg(args, scene)
     threshold = _threshold(args, 1e-3)
     plant = scene.plant
-    static = set(args.get("static_instances") or [])
+    static = set(args.static_instances)
     names = []
     for i in range(plant.num_model_instances()):
         name = plant.GetModelInstanceName(ModelInstanceIndex(i))
@@ -208,8 +167,6 @@ def op_collision_report(args):
     }
 
 
-from drake_bridge import projection, settle  # noqa: E402 - they use CACHE above
-
 OPS = {
     **asset_checks.OPS,
     "ping": op_ping,
@@ -224,3 +181,12 @@ OPS = {
     "usd_check": op_usd_check,
     "drop_spheres": layout_checks.op_drop_spheres,
 }
+
+
+def call(op, raw_args):
+    """Runs operation `op` on JSON arguments and returns its JSON reply, both validated against
+    the op's protocol types (BadRequest for bad arguments, an internal error for a bad reply)."""
+    if op not in OPS:
+        raise BadRequest(f"unknown op {op!r}; known ops: {', '.join(sorted(OPS))}")
+    args_type, reply_type = SIGNATURES[op]
+    return dump(reply_type, OPS[op](parse(args_type, raw_args)), where=f"reply to {op}")

@@ -12,7 +12,7 @@ from pydrake.all import (
     ProcessModelDirectives,
 )
 
-from drake_bridge.errors import BadRequest, FileMissing, ModelError
+from drake_bridge.errors import FileMissing, ModelError
 
 
 class LoadedScene:
@@ -33,17 +33,13 @@ class LoadedScene:
         return self.scene_graph.GetMyContextFromRoot(context or self.context)
 
 
-def _file_arg(args, key, required=True):
-    path = args.get(key)
+def existing_file(path, what):
+    """The absolute path of an existing file; FileMissing naming `what` otherwise."""
     if path is None:
-        if required:
-            raise BadRequest(f"missing argument {key!r}")
         return None
-    if not isinstance(path, str):
-        raise BadRequest(f"argument {key!r} must be a path string")
     path = os.path.abspath(path)
     if not os.path.isfile(path):
-        raise FileMissing(f"{key} file not found: {path}")
+        raise FileMissing(f"{what} file not found: {path}")
     return path
 
 
@@ -92,9 +88,10 @@ class PlantCache:
         self.hits = 0
         self.misses = 0
 
-    def get(self, args, time_step=1e-3):
-        directives = _file_arg(args, "directives")
-        package_xml = _file_arg(args, "package_xml", required=False)
+    def get(self, files, time_step=1e-3):
+        """The plant of `files` (a protocol.SceneFiles)."""
+        directives = existing_file(files.directives, "directives")
+        package_xml = existing_file(files.package_xml, "package_xml")
         key = (_digest([directives, package_xml]), time_step)
         if key in self._entries:
             self._entries.move_to_end(key)
@@ -106,3 +103,7 @@ class PlantCache:
         while len(self._entries) > self.capacity:
             self._entries.popitem(last=False)
         return loaded
+
+
+#: The plants of the `load`, `penetrations`, `collision_report` and `project` requests.
+CACHE = PlantCache()

@@ -28,14 +28,9 @@ from pydrake.multibody.inverse_kinematics import DistanceConstraint
 from pydrake.solvers import IpoptSolver, MathematicalProgram, SnoptSolver, SolverOptions
 
 from drake_bridge.errors import BadRequest
-from drake_bridge.sim_plant import apply_poses, free_bodies, instance_name, number, pose_json
-
-
-def _cache():
-    # The geometry plant is the one `load` and `collision_report` use (shared cache).
-    from drake_bridge.ops import CACHE
-
-    return CACHE
+from drake_bridge.plant_cache import CACHE
+from drake_bridge.protocol import in_range
+from drake_bridge.sim_plant import apply_poses, free_bodies, instance_name, pose_json
 
 
 def _shape_vertices(inspector, gid):
@@ -142,42 +137,30 @@ def _solve_with_deadline(solver, prog, q_vars, q_init, options, seconds):
 
 
 def _regions_arg(args, instances):
-    regions = args.get("regions") or {}
-    if not isinstance(regions, dict):
-        raise BadRequest("regions must map instance names to [[a, b, c], ...] (a x + b y <= c)")
+    """`args.regions` as arrays of half-plane rows [a, b, c] (a x + b y <= c)."""
     out = {}
-    for name, rows in regions.items():
+    for name, rows in args.regions.items():
         if name not in instances:
             raise BadRequest(f"regions names {name!r}, which is not a free model instance")
-        try:
-            arr = np.array(rows, dtype=float).reshape(-1, 3)
-        except (TypeError, ValueError) as e:
-            raise BadRequest(f"regions[{name!r}] must be rows [a, b, c]: {e}") from e
-        out[name] = arr
+        out[name] = np.array(rows, dtype=float).reshape(-1, 3)
     return out
 
 
 def op_project(args):
     """Moves the movable free bodies to the nearest non-penetrating translations."""
     t0 = time.perf_counter()
-    scene = _cache().get(args)
+    scene = CACHE.get(args)
     plant = scene.plant
     ctx = scene.context.Clone()
     pctx = plant.GetMyContextFromRoot(ctx)
-    apply_poses(plant, pctx, args.get("poses"))
-    min_distance = number(args, "min_distance", 1e-5, 0.0)
-    tolerance = number(args, "tolerance", 1e-4, 0.0)
-    candidate_distance = number(args, "candidate_distance", 0.05, 0.0)
-    time_limit = number(args, "time_limit", 60.0, 0.0)
-    xy_only = args.get("xy_only", False)
-    if not isinstance(xy_only, bool):
-        raise BadRequest("xy_only must be true or false")
-    solver_choice = args.get("solver", "auto")
-    if solver_choice not in ("auto", "snopt", "ipopt", "push_out"):
-        raise BadRequest("solver must be auto, snopt, ipopt or push_out")
-    floor_z = args.get("floor_z", 0.0)
-    if floor_z is not None:
-        floor_z = number(args, "floor_z", 0.0)
+    apply_poses(plant, pctx, args.poses)
+    min_distance = in_range("min_distance", args.min_distance, 0.0)
+    tolerance = in_range("tolerance", args.tolerance, 0.0)
+    candidate_distance = in_range("candidate_distance", args.candidate_distance, 0.0)
+    time_limit = in_range("time_limit", args.time_limit, 0.0)
+    xy_only = args.xy_only
+    solver_choice = args.solver
+    floor_z = args.floor_z
 
     bodies = free_bodies(plant)
     by_instance = {}
@@ -185,7 +168,7 @@ def op_project(args):
         by_instance.setdefault(instance_name(plant, b), []).append(b)
     all_idx = {b.index() for b in bodies}
     initial = _penetrations(scene, ctx, all_idx)
-    movable_arg = args.get("movable")
+    movable_arg = args.movable
     if movable_arg is None:
         if len(by_instance) > 100:
             names = {instance_name(plant, b) for p in initial if p[0] > tolerance
@@ -193,8 +176,6 @@ def op_project(args):
         else:
             names = set(by_instance)
     else:
-        if not isinstance(movable_arg, list) or not all(isinstance(n, str) for n in movable_arg):
-            raise BadRequest("movable must be a list of instance names")
         unknown = [n for n in movable_arg if n not in by_instance]
         if unknown:
             raise BadRequest(f"movable names instances that are not free: {unknown}")
@@ -233,6 +214,7 @@ def op_project(args):
         "initial_max_penetration_m": initial_depth,
         "attempts": [],
         "pairs": 0,
+        "push_out_iterations": None,
     }
 
     def finish(q, solver_name):

@@ -12,16 +12,8 @@ import time
 import numpy as np
 from pydrake.all import Simulator
 
-from drake_bridge.errors import BadRequest
-from drake_bridge.sim_plant import (
-    SIM_CACHE,
-    apply_poses,
-    contact_config,
-    free_bodies,
-    instance_name,
-    number,
-    pose_json,
-)
+from drake_bridge.protocol import Motion, SettleReply, in_range
+from drake_bridge.sim_plant import SIM_CACHE, apply_poses, free_bodies, instance_name, pose_json
 
 
 def _max_penetration(scene, ctx):
@@ -51,29 +43,25 @@ def _moved_less(X0, X1, distance, angle):
     return float(X0.rotation().InvertAndCompose(X1.rotation()).ToAngleAxis().angle()) < angle
 
 
-def _run(args, stop_at_rest_default, duration_key, duration_default):
-    cfg = contact_config(args)
-    time_step = number(args, "time_step", 1e-3, 1e-4, 1e-2)
-    duration = number(args, duration_key, duration_default, 0.0, 600.0)
-    rest_speed = number(args, "rest_speed", 2e-3, 0.0)
-    rest_angular_speed = number(args, "rest_angular_speed", 2e-2, 0.0)
-    rest_time = number(args, "rest_time", 0.25, 0.0)
-    interval = number(args, "check_interval", 0.01, time_step)
-    wall_limit = number(args, "wall_limit", 600.0, 0.0)
-    stop_at_rest = args.get("stop_at_rest", stop_at_rest_default)
-    if not isinstance(stop_at_rest, bool):
-        raise BadRequest("stop_at_rest must be true or false")
-    floor_z = args.get("floor_z")
-    if floor_z is not None:
-        floor_z = number(args, "floor_z", 0.0)
+def _run(args, duration):
+    """Runs a protocol.SettleArgs / SimulateArgs for `duration` simulated seconds."""
+    time_step = in_range("time_step", args.time_step, 1e-4, 1e-2)
+    in_range("duration", duration, 0.0, 600.0)
+    rest_speed = in_range("rest_speed", args.rest_speed, 0.0)
+    rest_angular_speed = in_range("rest_angular_speed", args.rest_angular_speed, 0.0)
+    rest_time = in_range("rest_time", args.rest_time, 0.0)
+    interval = in_range("check_interval", args.check_interval, time_step)
+    wall_limit = in_range("wall_limit", args.wall_limit, 0.0)
+    stop_at_rest = args.stop_at_rest
+    floor_z = args.floor_z
 
     t_wall = time.perf_counter()
-    scene = SIM_CACHE.get(args, cfg, time_step)
+    scene = SIM_CACHE.get(args, args.contact, time_step)
     build_s = time.perf_counter() - t_wall
     plant = scene.plant
     ctx = scene.context.Clone()
     pctx = plant.GetMyContextFromRoot(ctx)
-    apply_poses(plant, pctx, args.get("poses"))
+    apply_poses(plant, pctx, args.poses)
     bodies = free_bodies(plant)
     start = {b.index(): plant.EvalBodyPoseInWorld(pctx, b) for b in bodies}
 
@@ -130,37 +118,38 @@ def _run(args, stop_at_rest_default, duration_key, duration_default):
         poses.setdefault(name, {})[b.name()] = pose_json(X)
         disp = float(np.linalg.norm(X.translation() - X0.translation()))
         rot = float(X0.rotation().InvertAndCompose(X.rotation()).ToAngleAxis().angle())
-        m = motion.setdefault(name, {"displacement_m": 0.0, "rotation_rad": 0.0,
-                                     "start_z": float(X0.translation()[2]), "end_z": float(X.translation()[2])})
-        m["displacement_m"] = max(m["displacement_m"], disp)
-        m["rotation_rad"] = max(m["rotation_rad"], rot)
+        m = motion.setdefault(name, Motion(displacement_m=0.0, rotation_rad=0.0,
+                                           start_z=float(X0.translation()[2]),
+                                           end_z=float(X.translation()[2])))
+        m.displacement_m = max(m.displacement_m, disp)
+        m.rotation_rad = max(m.rotation_rad, rot)
     steps = int(round(t / time_step))
-    return {
-        "poses": poses,
-        "motion": motion,
-        "sim_time": t,
-        "steps": steps,
-        "at_rest": at_rest,
-        "timed_out": timed_out,
-        "max_speed": v_max,
-        "max_angular_speed": w_max,
-        "max_penetration_m": _max_penetration(scene, ctx),
-        "free_bodies": len(bodies),
-        "contact": cfg,
-        "time_step": time_step,
-        "build_s": build_s,
-        "sim_s": sim_s,
-        "wall_s": time.perf_counter() - t_wall,
-        "ms_per_step": 1e3 * sim_s / steps if steps else 0.0,
-        "cache": {"hits": SIM_CACHE.hits, "misses": SIM_CACHE.misses},
-    }
+    return SettleReply(
+        poses=poses,
+        motion=motion,
+        sim_time=t,
+        steps=steps,
+        at_rest=at_rest,
+        timed_out=timed_out,
+        max_speed=v_max,
+        max_angular_speed=w_max,
+        max_penetration_m=_max_penetration(scene, ctx),
+        free_bodies=len(bodies),
+        contact=args.contact,
+        time_step=time_step,
+        build_s=build_s,
+        sim_s=sim_s,
+        wall_s=time.perf_counter() - t_wall,
+        ms_per_step=1e3 * sim_s / steps if steps else 0.0,
+        cache={"hits": SIM_CACHE.hits, "misses": SIM_CACHE.misses},
+    )
 
 
 def op_settle(args):
-    """Simulates until rest (or `max_time`, default 3 s); returns final free-body poses."""
-    return _run(args, True, "max_time", 3.0)
+    """protocol.SettleArgs: simulates until rest (or `max_time`); final free-body poses."""
+    return _run(args, args.max_time)
 
 
 def op_simulate(args):
-    """Simulates for `duration` seconds (default 5) and reports how far every free body moved."""
-    return _run(args, False, "duration", 5.0)
+    """protocol.SimulateArgs: simulates `duration` seconds; how far every free body moved."""
+    return _run(args, args.duration)

@@ -24,30 +24,8 @@ from pydrake.common.eigen_geometry import Quaternion
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 
 from drake_bridge.errors import BadRequest, ModelError
-from drake_bridge.plant_cache import LoadedScene, _digest, _file_arg
-
-#: Defaults of the `contact` argument (`approximation` None: Drake's default).
-DEFAULT_CONTACT = {
-    "model": "as_written",
-    "approximation": None,
-}
-
-
-def contact_config(args):
-    """The validated `contact` argument merged over the defaults."""
-    given = args.get("contact") or {}
-    if not isinstance(given, dict):
-        raise BadRequest("contact must be an object")
-    unknown = set(given) - set(DEFAULT_CONTACT)
-    if unknown:
-        raise BadRequest(f"unknown contact keys {sorted(unknown)}; known: {sorted(DEFAULT_CONTACT)}")
-    cfg = dict(DEFAULT_CONTACT, **given)
-    if cfg["model"] not in ("as_written", "point"):
-        raise BadRequest("contact.model must be 'as_written' or 'point'")
-    if cfg["approximation"] not in (None, "lagged", "similar", "sap", "tamsi"):
-        raise BadRequest("contact.approximation must be null, lagged, similar, sap or tamsi")
-    return cfg
-
+from drake_bridge.plant_cache import LoadedScene, _digest, existing_file
+from drake_bridge.protocol import Pose
 
 def is_free(body):
     """True for a floating base body (the API was renamed in drake 1.52)."""
@@ -65,13 +43,14 @@ def instance_name(plant, body):
     return plant.GetModelInstanceName(body.model_instance())
 
 
-def build_sim_scene(directives_path, package_xml, cfg, time_step):
+def build_sim_scene(directives_path, package_xml, contact, time_step):
+    """A finalized plant of a directives file with `contact` (a protocol.ContactArgs)."""
     builder = DiagramBuilder()
     config = MultibodyPlantConfig(time_step=time_step)
-    if cfg["model"] == "point":
+    if contact.model == "point":
         config.contact_model = "point"
-    if cfg["approximation"] is not None:
-        config.discrete_contact_approximation = cfg["approximation"]
+    if contact.approximation is not None:
+        config.discrete_contact_approximation = contact.approximation
     plant, scene_graph = AddMultibodyPlant(config, builder)
     parser = Parser(plant)
     if parser.package_map().Contains("drake_models"):
@@ -100,16 +79,17 @@ class SimCache:
         self.hits = 0
         self.misses = 0
 
-    def get(self, args, cfg, time_step):
-        directives = _file_arg(args, "directives")
-        package_xml = _file_arg(args, "package_xml", required=False)
-        key = (_digest([directives, package_xml]), tuple(sorted(cfg.items())), time_step)
+    def get(self, files, contact, time_step):
+        """The plant of `files` (protocol.SceneFiles) with `contact` (protocol.ContactArgs)."""
+        directives = existing_file(files.directives, "directives")
+        package_xml = existing_file(files.package_xml, "package_xml")
+        key = (_digest([directives, package_xml]), contact.model, contact.approximation, time_step)
         if key in self._entries:
             self._entries.move_to_end(key)
             self.hits += 1
             return self._entries[key]
         self.misses += 1
-        loaded = build_sim_scene(directives, package_xml, cfg, time_step)
+        loaded = build_sim_scene(directives, package_xml, contact, time_step)
         self._entries[key] = loaded
         while len(self._entries) > self.capacity:
             self._entries.popitem(last=False)
@@ -120,36 +100,27 @@ SIM_CACHE = SimCache()
 
 
 def pose_json(X):
+    """A RigidTransform as a protocol.Pose."""
     q = X.rotation().ToQuaternion()
-    return {"xyz": [float(v) for v in X.translation()],
-            "wxyz": [float(q.w()), float(q.x()), float(q.y()), float(q.z())]}
+    return Pose(xyz=tuple(float(v) for v in X.translation()),
+                wxyz=(float(q.w()), float(q.x()), float(q.y()), float(q.z())))
 
 
 def pose_from_json(pose, where):
-    try:
-        w, x, y, z = (float(v) for v in pose["wxyz"])
-        xyz = np.array([float(v) for v in pose["xyz"]], dtype=float)
-        if xyz.shape != (3,):
-            raise ValueError("xyz needs three numbers")
-        q = Quaternion(w, x, y, z)
-        if abs(np.linalg.norm([w, x, y, z]) - 1.0) > 1e-6:
-            raise ValueError("quaternion is not unit length")
-        return RigidTransform(q, xyz)
-    except (KeyError, TypeError, ValueError) as e:
-        raise BadRequest(f"bad pose for {where}: {e}") from e
+    """A protocol.Pose as a RigidTransform; BadRequest unless its quaternion is unit length."""
+    w, x, y, z = pose.wxyz
+    if abs(np.linalg.norm([w, x, y, z]) - 1.0) > 1e-6:
+        raise BadRequest(f"bad pose for {where}: quaternion is not unit length")
+    return RigidTransform(Quaternion(w, x, y, z), np.array(pose.xyz, dtype=float))
 
 
 def apply_poses(plant, plant_context, poses):
-    """Sets free-body poses from {"instance": {"body": {xyz, wxyz}}}."""
+    """Sets free-body poses from a protocol.Poses (instance -> body -> Pose), if given."""
     if poses is None:
         return
-    if not isinstance(poses, dict):
-        raise BadRequest("poses must map instance names to {body: {xyz, wxyz}}")
     for inst_name, bodies in poses.items():
         if not plant.HasModelInstanceNamed(inst_name):
             raise BadRequest(f"no model instance named {inst_name!r}")
-        if not isinstance(bodies, dict):
-            raise BadRequest(f"poses[{inst_name!r}] must map body names to poses")
         mi = plant.GetModelInstanceByName(inst_name)
         for body_name, pose in bodies.items():
             if not plant.HasBodyNamed(body_name, mi):
@@ -166,12 +137,3 @@ def free_poses(plant, plant_context, bodies):
         out.setdefault(instance_name(plant, b), {})[b.name()] = pose_json(
             plant.EvalBodyPoseInWorld(plant_context, b))
     return out
-
-
-def number(args, key, default, lo=None, hi=None):
-    v = args.get(key, default)
-    if not isinstance(v, (int, float)) or isinstance(v, bool) or not np.isfinite(v):
-        raise BadRequest(f"{key} must be a number")
-    if (lo is not None and v < lo) or (hi is not None and v > hi):
-        raise BadRequest(f"{key} must lie in [{lo}, {hi}]")
-    return float(v)

@@ -10,6 +10,7 @@ use serde_json::json;
 use scenesmith::agents::llm::LlmConfig;
 use scenesmith::export::ExportSet;
 use scenesmith::physics::Bridge;
+use scenesmith::physics::protocol::{NoArgs, Versions};
 use scenesmith::pipeline::{self, BackendChoice, GenerateOptions, PipelineError};
 
 /// Text prompt -> simulation-ready indoor scene (SDFormat + Drake model directives).
@@ -689,46 +690,38 @@ fn run_layout(
 
 fn run_doctor(cli_json: bool) -> anyhow::Result<ExitCode> {
     let config = scenesmith::physics::BridgeConfig::from_env();
-    let mut report = json!({
-        "scenesmith": env!("CARGO_PKG_VERSION"),
-        "home": config.home,
-        "python": config.python,
-    });
-    let ok = match Bridge::start(config).and_then(|mut b| b.request("versions", json!({}))) {
-        Ok(v) => {
-            report["bridge"] = v;
-            true
-        }
-        Err(e) => {
-            report["bridge_error"] = json!(e.to_string());
-            false
-        }
-    };
+    let (home, python) = (config.home.clone(), config.python.clone());
+    let versions = Bridge::start(config).and_then(|mut b| b.call::<Versions>(&NoArgs {}));
+    let ok = versions.is_ok();
     if cli_json {
+        let mut report = json!({
+            "scenesmith": env!("CARGO_PKG_VERSION"),
+            "home": home,
+            "python": python,
+        });
+        match &versions {
+            Ok(v) => report["bridge"] = serde_json::to_value(v)?,
+            Err(e) => report["bridge_error"] = json!(e.to_string()),
+        }
         print_json(&report)?;
     } else {
         eprintln!("scenesmith {}", env!("CARGO_PKG_VERSION"));
-        eprintln!("  home:    {}", report["home"].as_str().unwrap_or_default());
-        eprintln!(
-            "  python:  {}",
-            report["python"].as_str().unwrap_or_default()
-        );
-        if ok {
-            let b = &report["bridge"];
-            eprintln!("  Python {}", b["python"].as_str().unwrap_or("?"));
-            eprintln!("  drake {}", b["drake"].as_str().unwrap_or("?"));
-            eprintln!(
-                "  SNOPT available {} enabled {}; IPOPT available {}",
-                b["snopt"]["available"], b["snopt"]["enabled"], b["ipopt"]["available"]
-            );
-            eprintln!("  numpy {}", b["numpy"].as_str().unwrap_or("missing"));
-            eprintln!("  mujoco {}", b["mujoco"].as_str().unwrap_or("missing"));
-            eprintln!("  usd-core {}", b["usd_core"].as_str().unwrap_or("missing"));
-        } else {
-            eprintln!(
-                "  bridge: {}",
-                report["bridge_error"].as_str().unwrap_or_default()
-            );
+        eprintln!("  home:    {}", home.display());
+        eprintln!("  python:  {}", python.display());
+        match &versions {
+            Ok(b) => {
+                let missing = |v: &Option<String>| v.clone().unwrap_or_else(|| "missing".into());
+                eprintln!("  Python {}", b.python);
+                eprintln!("  drake {}", b.drake);
+                eprintln!(
+                    "  SNOPT available {} enabled {}; IPOPT available {}",
+                    b.snopt.available, b.snopt.enabled, b.ipopt.available
+                );
+                eprintln!("  numpy {}", missing(&b.numpy));
+                eprintln!("  mujoco {}", missing(&b.mujoco));
+                eprintln!("  usd-core {}", missing(&b.usd_core));
+            }
+            Err(e) => eprintln!("  bridge: {e}"),
         }
     }
     Ok(if ok {

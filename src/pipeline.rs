@@ -23,6 +23,7 @@ use crate::geometry::GeometryError;
 use crate::layout;
 use crate::physics::collision;
 use crate::physics::postprocess::{self, PostProcessOptions, PostProcessReport};
+use crate::physics::protocol::{CollisionReport, CollisionReportArgs, Load, SceneFiles};
 use crate::physics::{Bridge, BridgeError, BridgePool, PhysicsError};
 
 use crate::scene::{ObjectKind, Scene, sanitize_name};
@@ -685,93 +686,70 @@ pub fn check_dir(
     threshold_m: f64,
 ) -> Result<CheckSummary, PipelineError> {
     let scene = scene_dir::read_scene(dir)?;
-    let directives = dir.join(names::DIRECTIVES);
-    let package_xml = dir.join(names::PACKAGE_XML);
-    let args = json!({
-        "directives": directives,
-        "package_xml": package_xml,
-    });
-    let loaded = bridge.request("load", args.clone())?;
-    let static_ids: Vec<String> = scene
+    let files = SceneFiles::new(dir.join(names::DIRECTIVES), dir.join(names::PACKAGE_XML));
+    let loaded = bridge.call::<Load>(&files)?;
+    let static_instances: Vec<String> = scene
         .objects_of_kind(ObjectKind::Architecture)
         .map(|o| o.id.clone())
         .collect();
-    let mut report_args = args;
-    report_args["threshold"] = json!(threshold_m);
-    report_args["static_instances"] = json!(static_ids);
-    let report = bridge.request("collision_report", report_args)?;
+    let report = bridge.call::<CollisionReport>(&CollisionReportArgs {
+        scene: files,
+        poses: None,
+        threshold: Some(threshold_m),
+        static_instances,
+    })?;
 
-    let instances = loaded["model_instances"]
-        .as_array()
-        .cloned()
-        .unwrap_or_default();
     let mut problems = Vec::new();
-    let loaded_names: std::collections::BTreeSet<String> = instances
+    let loaded_names: std::collections::BTreeSet<&str> = loaded
+        .model_instances
         .iter()
-        .filter_map(|m| m["name"].as_str().map(str::to_string))
+        .map(|m| m.name.as_str())
         .collect();
     for o in &scene.objects {
-        if !loaded_names.contains(&o.id) {
+        if !loaded_names.contains(o.id.as_str()) {
             problems.push(format!("object {} is not a model instance in Drake", o.id));
         }
     }
     let mut free_bodies = 0;
-    for m in &instances {
-        let name = m["name"].as_str().unwrap_or_default();
+    for m in &loaded.model_instances {
+        let name = &m.name;
         let Some(obj) = scene.object(name) else {
             problems.push(format!("Drake has an unexpected model instance {name}"));
             continue;
         };
-        let free = m["free_bodies"].as_object().cloned().unwrap_or_default();
-        free_bodies += free.len();
-        if obj.welded && !free.is_empty() {
+        free_bodies += m.free_bodies.len();
+        if obj.welded && !m.free_bodies.is_empty() {
             problems.push(format!("{name} should be welded but Drake has it free"));
         }
-        if !obj.welded && free.is_empty() {
+        if !obj.welded && m.free_bodies.is_empty() {
             problems.push(format!("{name} should be free but Drake has it welded"));
         }
-        if let Some((_, pose)) = free.iter().next() {
-            let xyz: Vec<f64> = pose["xyz"]
-                .as_array()
-                .map(|a| a.iter().filter_map(|v| v.as_f64()).collect())
-                .unwrap_or_default();
+        if let Some(pose) = m.free_bodies.values().next() {
+            let xyz = pose.translation();
             let p = obj.world_from_object.translation();
-            if xyz.len() == 3
-                && ((xyz[0] - p.x).abs() > 1e-6
-                    || (xyz[1] - p.y).abs() > 1e-6
-                    || (xyz[2] - p.z).abs() > 1e-6)
-            {
+            if (xyz - p).abs().max() > 1e-6 {
                 problems.push(format!(
-                    "{name}: Drake pose {xyz:?} differs from scene.json [{}, {}, {}]",
-                    p.x, p.y, p.z
+                    "{name}: Drake pose [{}, {}, {}] differs from scene.json [{}, {}, {}]",
+                    xyz.x, xyz.y, xyz.z, p.x, p.y, p.z
                 ));
             }
         }
     }
-    let pairs = report["pairs"]
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .map(|p| {
-                    (
-                        p["a"].as_str().unwrap_or_default().to_string(),
-                        p["b"].as_str().unwrap_or_default().to_string(),
-                        p["depth"].as_f64().unwrap_or(0.0),
-                    )
-                })
-                .collect()
-        })
-        .unwrap_or_default();
+    let pairs = report
+        .pairs
+        .iter()
+        .map(|p| (p.a.clone(), p.b.clone(), p.depth))
+        .collect();
     Ok(CheckSummary {
         drake: bridge.hello().drake.clone(),
-        model_instances: instances.len(),
+        model_instances: loaded.model_instances.len(),
         scene_objects: scene.objects.len(),
-        bodies: loaded["num_bodies"].as_u64().unwrap_or(0) as usize,
+        bodies: loaded.num_bodies,
         free_bodies,
-        col_objects: report["objects"].as_u64().unwrap_or(0) as usize,
-        col_percent: report["col_percent"].as_f64().unwrap_or(f64::NAN),
-        mean_depth_m: report["mean_depth_m"].as_f64().unwrap_or(f64::NAN),
-        max_depth_m: report["max_depth_m"].as_f64().unwrap_or(f64::NAN),
+        col_objects: report.objects,
+        col_percent: report.col_percent,
+        mean_depth_m: report.mean_depth_m,
+        max_depth_m: report.max_depth_m,
         threshold_m,
         pairs,
         problems,

@@ -5,10 +5,9 @@ mod physics_util;
 
 use physics_util::*;
 use scenesmith::formats::scene_dir::write_scene_dir;
-use scenesmith::physics::pool::Job;
+use scenesmith::physics::protocol::{Load, NoArgs, Ping, SceneFiles};
 use scenesmith::physics::{BridgeConfig, BridgeError, BridgePool};
 use scenesmith::scene::{ObjectKind, Pose};
-use serde_json::json;
 
 #[test]
 fn run_all_keeps_job_order_and_uses_every_worker() {
@@ -28,26 +27,26 @@ fn run_all_keeps_job_order_and_uses_every_worker() {
         }
         let dir = root.path().join(format!("s{i}"));
         write_scene_dir(&dir, &state).unwrap();
-        jobs.push(Job::new(
-            "load",
-            json!({"directives": dir.join("scene.dmd.yaml"), "package_xml": dir.join("package.xml")}),
+        jobs.push(SceneFiles::new(
+            dir.join("scene.dmd.yaml"),
+            dir.join("package.xml"),
         ));
     }
     let pool = pool(2);
-    let results = pool.run_all(jobs.clone());
+    let results = pool.call_all::<Load>(&jobs);
     assert_eq!(results.len(), 4);
     for (i, r) in results.into_iter().enumerate() {
         let r = r.unwrap();
-        assert_eq!(r["directives"], jobs[i].args["directives"]);
+        assert_eq!(std::path::Path::new(&r.directives), jobs[i].directives);
         // The architecture plus i + 1 cubes.
-        assert_eq!(r["num_model_instances"], i + 2);
+        assert_eq!(r.num_model_instances, i + 2);
     }
     let pids: Vec<u32> = pool.pids().into_iter().flatten().collect();
     assert_eq!(pids.len(), 2, "both workers started");
     assert_ne!(pids[0], pids[1]);
     // The same directives again go to the worker that has the plant: a cache hit.
-    let again = pool.request("load", jobs[3].args.clone()).unwrap();
-    assert!(again["cache"]["hits"].as_u64().unwrap() >= 1, "{again}");
+    let again = pool.call::<Load>(&jobs[3]).unwrap();
+    assert!(again.cache.hits >= 1, "{:?}", again.cache);
 }
 
 #[test]
@@ -55,10 +54,10 @@ fn a_pool_without_python_fails_clearly() {
     let mut config = BridgeConfig::from_env();
     config.python = "/nonexistent/python".into();
     let pool = BridgePool::new(config, 2);
-    let err = pool.request("ping", json!({})).unwrap_err();
+    let err = pool.call::<Ping>(&NoArgs {}).unwrap_err();
     assert!(matches!(err, BridgeError::PythonMissing { .. }), "{err}");
     assert!(err.to_string().contains("scripts/setup.sh"));
-    let all = pool.run_all(vec![Job::new("ping", json!({})); 3]);
+    let all = pool.call_all::<Ping>(&[NoArgs {}, NoArgs {}, NoArgs {}]);
     assert!(
         all.iter()
             .all(|r| matches!(r, Err(BridgeError::PythonMissing { .. })))

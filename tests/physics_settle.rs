@@ -11,8 +11,9 @@ use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::physics::postprocess::{
     PostProcessOptions, post_process, post_process_placing_again,
 };
+use scenesmith::physics::protocol::Simulate;
 use scenesmith::physics::removal::tilt;
-use scenesmith::physics::settle::{SettleOptions, parse_result, request_args};
+use scenesmith::physics::settle::{SettleOptions, simulate_args};
 use scenesmith::scene::{ObjectKind, Pose};
 use scenesmith::stages::SceneState;
 
@@ -278,13 +279,13 @@ fn a_worker_killed_during_a_settle_is_replaced_and_the_request_retried() {
         stop_at_rest: false,
         ..SettleOptions::default()
     };
-    let (op, args) = request_args(
+    let args = simulate_args(
         &dir.path().join("scene.dmd.yaml"),
         &dir.path().join("package.xml"),
         &opts,
     );
     let result = std::thread::scope(|s| {
-        let request = s.spawn(|| pool.request(&op, args));
+        let request = s.spawn(|| pool.call::<Simulate>(&args));
         std::thread::sleep(Duration::from_millis(800));
         let killed = std::process::Command::new("kill")
             .args(["-9", &pid.to_string()])
@@ -293,7 +294,7 @@ fn a_worker_killed_during_a_settle_is_replaced_and_the_request_retried() {
         assert!(killed.success());
         request.join().unwrap()
     });
-    let result = parse_result(&op, result.expect("retried on a fresh worker")).unwrap();
+    let result = result.expect("retried on a fresh worker");
     assert!((result.sim_time - 3.0).abs() < 1e-9);
     assert_eq!(result.free_bodies, 7);
     assert_eq!(pool.restarts(), 1);

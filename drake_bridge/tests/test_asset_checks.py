@@ -65,7 +65,7 @@ def clashing(tmp_path):
 
 def test_load_reports_every_model_and_names_the_broken_one(tmp_path, crate, drawer_unit):
     broken = model(tmp_path, "broken", link("body", "0 0 0 0 0 0", (0.2, 0.2, 0.2), -1.0))
-    out = asset_checks.op_assets_load({"models": [crate, drawer_unit, broken]})["models"]
+    out = ops.call("assets_load", {"models": [crate, drawer_unit, broken]})["models"]
     assert out["crate"]["ok"] and out["crate"]["mass"] == pytest.approx(5.0)
     assert out["drawer_unit"]["joints"] == [
         {"name": "drawer_slide", "type": "prismatic", "lower": 0.0, "upper": pytest.approx(0.3)}]
@@ -74,14 +74,14 @@ def test_load_reports_every_model_and_names_the_broken_one(tmp_path, crate, draw
 
 
 def test_drop_keeps_a_crate_upright_and_catches_a_topple(crate, topple):
-    out = asset_checks.op_assets_drop({"models": [crate, topple], "duration": 1.0, "time_step": 2e-3})["models"]
+    out = ops.call("assets_drop", {"models": [crate, topple], "duration": 1.0, "time_step": 2e-3})["models"]
     assert out["crate"]["rotation_rad"] < 0.01
     assert abs(out["crate"]["vertical_m"]) < 0.005
     assert out["topple"]["rotation_rad"] > 0.3
 
 
 def test_push_opens_a_drawer_to_its_limit_and_reports_self_collision(drawer_unit, clashing):
-    out = asset_checks.op_assets_push({"models": [drawer_unit, clashing], "duration": 0.5})["models"]
+    out = ops.call("assets_push", {"models": [drawer_unit, clashing], "duration": 0.5})["models"]
     j = out["drawer_unit"]["joints"]["drawer_slide"]
     assert j["position"] == pytest.approx(0.3, abs=0.01)
     assert out["drawer_unit"]["self_penetration_m"] < 1e-3
@@ -93,8 +93,8 @@ def test_ops_are_registered_and_validate_arguments(tmp_path):
     for name in ("assets_load", "assets_drop", "assets_push"):
         assert name in ops.OPS
     with pytest.raises(BadRequest, match="non-empty list"):
-        asset_checks.op_assets_load({"models": []})
+        ops.call("assets_load", {"models": []})
     with pytest.raises(FileMissing):
-        asset_checks.op_assets_load({"models": [{"name": "x", "sdf": str(tmp_path / "none.sdf")}]})
+        ops.call("assets_load", {"models": [{"name": "x", "sdf": str(tmp_path / "none.sdf")}]})
     with pytest.raises(BadRequest, match="duration"):
-        asset_checks.op_assets_drop({"models": [{"name": "x", "sdf": __file__}], "duration": -1})
+        ops.call("assets_drop", {"models": [{"name": "x", "sdf": __file__}], "duration": -1})

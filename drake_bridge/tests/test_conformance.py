@@ -63,7 +63,7 @@ def mjcf(tmp_path):
 
 
 def test_mujoco_check_reports_bodies_joints_and_stability(mjcf):
-    r = ops.OPS["mujoco_check"]({"xml": mjcf, "seconds": 1.0})
+    r = ops.call("mujoco_check", {"xml": mjcf, "seconds": 1.0})
     bodies = {b["name"]: b for b in r["bodies"]}
     assert set(bodies) == {"box_0", "cab_0", "cab_0/door"}
     box = bodies["box_0"]
@@ -84,10 +84,10 @@ def test_mujoco_check_reports_bodies_joints_and_stability(mjcf):
 
 
 def test_mujoco_probe_turns_a_hinge_within_its_range(mjcf):
-    opened = ops.OPS["mujoco_check"]({"xml": mjcf, "seconds": 1.0,
+    opened = ops.call("mujoco_check", {"xml": mjcf, "seconds": 1.0,
                                       "probe_joints": {"cab_0/hinge": 0.5}})
     assert 0.5 < opened["probe"]["cab_0/hinge"] <= 1.5 + 0.02
-    pushed = ops.OPS["mujoco_check"]({"xml": mjcf, "seconds": 1.0,
+    pushed = ops.call("mujoco_check", {"xml": mjcf, "seconds": 1.0,
                                       "probe_joints": {"cab_0/hinge": -0.5}})
     assert -0.02 <= pushed["probe"]["cab_0/hinge"] <= 0.01
 
@@ -97,7 +97,7 @@ def test_mujoco_instability_is_reported_and_nothing_is_logged_to_disk(tmp_path, 
     path = tmp_path / "unstable.xml"
     path.write_text('<mujoco><option gravity="0 0 -1e300"/><worldbody><body><freejoint/>'
                     '<geom type="box" size="0.05 0.05 0.05"/></body></worldbody></mujoco>')
-    r = conformance.op_mujoco_check({"xml": str(path), "seconds": 0.1})
+    r = ops.call("mujoco_check", {"xml": str(path), "seconds": 0.1})
     assert r["finite"] is False
     assert "mjWARN_BADQACC" in r["warnings"]
     assert any("unstable" in m for m in r["messages"])
@@ -108,20 +108,20 @@ def test_mujoco_instability_is_reported_and_nothing_is_logged_to_disk(tmp_path, 
                               '<geom type="box" size="0.05 0.05 0.05"/></body>' for i in range(30))
                     + "</worldbody></mujoco>")
     with pytest.raises(ModelError, match="out of memory"):
-        conformance.op_mujoco_check({"xml": str(tiny), "seconds": 0.1})
+        ops.call("mujoco_check", {"xml": str(tiny), "seconds": 0.1})
 
 
 def test_mujoco_check_errors(tmp_path, mjcf):
     with pytest.raises(FileMissing):
-        conformance.op_mujoco_check({"xml": str(tmp_path / "none.xml")})
+        ops.call("mujoco_check", {"xml": str(tmp_path / "none.xml")})
     with pytest.raises(BadRequest, match="seconds"):
-        conformance.op_mujoco_check({"xml": mjcf, "seconds": -1})
+        ops.call("mujoco_check", {"xml": mjcf, "seconds": -1})
     with pytest.raises(BadRequest, match="no joint named"):
-        conformance.op_mujoco_check({"xml": mjcf, "seconds": 0.1, "probe_joints": {"x": 1}})
+        ops.call("mujoco_check", {"xml": mjcf, "seconds": 0.1, "probe_joints": {"x": 1}})
     bad = tmp_path / "bad.xml"
     bad.write_text(MJCF.replace('mesh="cube"/>', 'mesh="nope"/>', 1))
     with pytest.raises(ModelError, match="bad.xml"):
-        conformance.op_mujoco_check({"xml": str(bad)})
+        ops.call("mujoco_check", {"xml": str(bad)})
 
 
 USDA = """#usda 1.0
@@ -199,7 +199,7 @@ def Xform "World"
 def test_usd_check_reads_metadata_bodies_and_joint_state(tmp_path):
     path = tmp_path / "scene.usda"
     path.write_text(USDA)
-    r = ops.OPS["usd_check"]({"usd": str(path), "static_prims": ["/World/floor"]})
+    r = ops.call("usd_check", {"usd": str(path), "static_prims": ["/World/floor"]})
     md = r["metadata"]
     assert (md["meters_per_unit"], md["kilograms_per_unit"], md["up_axis"]) == (1.0, 1.0, "Z")
     assert md["default_prim"] == "/World"
@@ -226,7 +226,7 @@ def test_usd_check_flags_a_joint_to_nowhere(tmp_path):
     path = tmp_path / "broken.usda"
     path.write_text(USDA.replace("rel physics:body1 = </World/cab_0/door>",
                                  "rel physics:body1 = </World/cab_0/ghost>"))
-    r = ops.OPS["usd_check"]({"usd": str(path)})
+    r = ops.call("usd_check", {"usd": str(path)})
     (joint,) = r["joints"]
     assert joint["body1_ok"] is False
     assert any(f["severity"] == "Error" and "Joint" in f["message"] + f["validator"]
@@ -235,10 +235,10 @@ def test_usd_check_flags_a_joint_to_nowhere(tmp_path):
 
 def test_usd_check_errors(tmp_path):
     with pytest.raises(FileMissing):
-        conformance.op_usd_check({"usd": str(tmp_path / "none.usda")})
+        ops.call("usd_check", {"usd": str(tmp_path / "none.usda")})
     bad = tmp_path / "bad.usda"
     bad.write_text("#usda 1.0\ndef Xform \"World\" {\n")
     with pytest.raises(ModelError, match="bad.usda"):
-        conformance.op_usd_check({"usd": str(bad)})
+        ops.call("usd_check", {"usd": str(bad)})
     with pytest.raises(BadRequest, match="static_prims"):
-        conformance.op_usd_check({"usd": str(bad), "static_prims": "x"})
+        ops.call("usd_check", {"usd": str(bad), "static_prims": "x"})

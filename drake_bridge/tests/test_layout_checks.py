@@ -9,7 +9,7 @@ from drake_bridge.tests.conftest import write_scene
 
 def test_sphere_lands_on_the_floor(tmp_path):
     scene = write_scene(tmp_path, [("floor", (0.0, 0.0, -0.05), (4.0, 4.0, 0.1), True)])
-    out = ops.OPS["drop_spheres"](dict(scene, spheres=[
+    out = ops.call("drop_spheres", dict(scene, spheres=[
         {"name": "ball_a", "xyz": [0.5, -0.5, 1.0], "radius": 0.1},
         {"name": "ball_far", "xyz": [5.0, 5.0, 1.0], "radius": 0.1},
     ], duration=1.0))
@@ -23,11 +23,11 @@ def test_sphere_lands_on_the_floor(tmp_path):
 def test_bad_spheres_are_refused(tmp_path):
     scene = write_scene(tmp_path, [("floor", (0.0, 0.0, -0.05), (4.0, 4.0, 0.1), True)])
     with pytest.raises(BadRequest, match="non-empty list"):
-        ops.OPS["drop_spheres"](dict(scene, spheres=[]))
+        ops.call("drop_spheres", dict(scene, spheres=[]))
     with pytest.raises(BadRequest, match="radius"):
-        ops.OPS["drop_spheres"](dict(scene, spheres=[{"name": "b", "xyz": [0, 0, 1], "radius": 5}]))
+        ops.call("drop_spheres", dict(scene, spheres=[{"name": "b", "xyz": [0, 0, 1], "radius": 5}]))
     with pytest.raises(BadRequest, match="clashes"):
-        ops.OPS["drop_spheres"](dict(scene, spheres=[{"name": "floor", "xyz": [0, 0, 1]}]))
+        ops.call("drop_spheres", dict(scene, spheres=[{"name": "floor", "xyz": [0, 0, 1]}]))
     with pytest.raises(BadRequest, match="unique"):
-        ops.OPS["drop_spheres"](dict(scene, spheres=[
+        ops.call("drop_spheres", dict(scene, spheres=[
             {"name": "b", "xyz": [0, 0, 1]}, {"name": "b", "xyz": [1, 0, 1]}]))

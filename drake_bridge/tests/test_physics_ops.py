@@ -20,7 +20,7 @@ def test_box_dropped_on_a_table_lands_on_it(tmp_path):
         ("table", (0.0, 0.0, 0.675), (0.6, 0.6, 0.05), True),
         ("box", (0.05, 0.0, 0.7 + 0.05 + 0.02), (0.1, 0.1, 0.1), False),
     ])
-    r = ops.OPS["settle"](dict(scene, floor_z=0.0))
+    r = ops.call("settle", dict(scene, floor_z=0.0))
     assert r["at_rest"] and not r["timed_out"]
     assert r["sim_time"] < 1.5, "a 2 cm drop comes to rest quickly"
     assert _z(r, "box") == pytest.approx(0.75, abs=1e-3)
@@ -40,7 +40,7 @@ def test_overhanging_box_falls_off_and_the_stack_below_stays(tmp_path):
         ("base", (0.0, 0.0, 0.55), (0.1, 0.1, 0.1), False),
         ("top", (0.13, 0.0, 0.651), (0.2, 0.1, 0.1), False),
     ])
-    r = ops.OPS["settle"](dict(scene, floor_z=0.0, max_time=3.0))
+    r = ops.call("settle", dict(scene, floor_z=0.0, max_time=3.0))
     assert _z(r, "top") < 0.2, "the overhanging box fell"
     assert r["motion"]["top"]["displacement_m"] > 0.3
     assert r["motion"]["base"]["displacement_m"] < 5e-3
@@ -48,22 +48,23 @@ def test_overhanging_box_falls_off_and_the_stack_below_stays(tmp_path):
 
 def test_simulate_runs_the_whole_duration_and_point_contact_is_selectable(tmp_path):
     scene = write_scene(tmp_path, [FLOOR, ("box", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False)])
-    r = ops.OPS["simulate"](dict(scene, duration=0.3))
+    r = ops.call("simulate", dict(scene, duration=0.3))
     assert r["sim_time"] == pytest.approx(0.3)
     assert r["steps"] == 300
     assert r["motion"]["box"]["displacement_m"] < 1e-3
-    p = ops.OPS["simulate"](dict(scene, duration=0.1, contact={"model": "point"}))
+    p = ops.call("simulate", dict(scene, duration=0.1, contact={"model": "point"}))
     assert p["contact"]["model"] == "point"
     with pytest.raises(BadRequest, match="contact.model"):
-        ops.OPS["simulate"](dict(scene, contact={"model": "magic"}))
-    with pytest.raises(BadRequest, match="unknown contact keys"):
-        ops.OPS["simulate"](dict(scene, contact={"stiffness": 1}))
+        ops.call("simulate", dict(scene, contact={"model": "magic"}))
+    with pytest.raises(BadRequest, match="unknown field"):
+        ops.call("simulate", dict(scene, contact={"stiffness": 1}))
 
 
 def _hydroelastic_geometries(scene_args, model):
-    from drake_bridge.sim_plant import build_sim_scene, contact_config
+    from drake_bridge.protocol import ContactArgs
+    from drake_bridge.sim_plant import build_sim_scene
     from pydrake.geometry import Role
-    cfg = contact_config({"contact": {"model": model}})
+    cfg = ContactArgs(model=model)
     loaded = build_sim_scene(scene_args["directives"], scene_args["package_xml"], cfg, 1e-3)
     inspector = loaded.scene_graph.model_inspector()
     ids = inspector.GetAllGeometryIds(Role.kProximity)
@@ -82,22 +83,23 @@ def test_the_bridge_simulates_the_files_as_written(tmp_path):
                             [FLOOR, ("box", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False)])
     assert _hydroelastic_geometries(compliant, "as_written") == (2, 2)
     # The plant is Drake's default one: hydroelastic with point fallback, 1 ms.
-    from drake_bridge.sim_plant import build_sim_scene, contact_config
+    from drake_bridge.protocol import ContactArgs
+    from drake_bridge.sim_plant import build_sim_scene
     loaded = build_sim_scene(compliant["directives"], compliant["package_xml"],
-                             contact_config({}), 1e-3)
+                             ContactArgs(model="as_written"), 1e-3)
     assert str(loaded.plant.get_contact_model()).endswith("kHydroelasticWithFallback")
     point = build_sim_scene(compliant["directives"], compliant["package_xml"],
-                            contact_config({"contact": {"model": "point"}}), 1e-3)
+                            ContactArgs(model="point"), 1e-3)
     assert str(point.plant.get_contact_model()).endswith("kPoint")
 
 
 def test_settle_takes_initial_poses(tmp_path):
     scene = write_scene(tmp_path, [FLOOR, ("box", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False)])
-    r = ops.OPS["settle"](dict(scene, poses={"box": {"body": {"xyz": [1.0, 0.5, 0.3],
+    r = ops.call("settle", dict(scene, poses={"box": {"body": {"xyz": [1.0, 0.5, 0.3],
                                                               "wxyz": [1, 0, 0, 0]}}}))
     assert r["poses"]["box"]["body"]["xyz"] == pytest.approx([1.0, 0.5, 0.05], abs=1e-3)
     with pytest.raises(BadRequest, match="not a free body"):
-        ops.OPS["settle"](dict(scene, poses={"floor": {"body": {"xyz": [0, 0, 0],
+        ops.call("settle", dict(scene, poses={"floor": {"body": {"xyz": [0, 0, 0],
                                                                 "wxyz": [1, 0, 0, 0]}}}))
 
 
@@ -116,8 +118,8 @@ def deep_overlap(tmp_path):
 
 @pytest.mark.parametrize("solver", ["snopt", "ipopt", "push_out"])
 def test_projection_separates_and_leaves_the_rest(deep_overlap, solver):
-    before = ops.op_load(deep_overlap)
-    r = ops.OPS["project"](dict(deep_overlap, solver=solver))
+    before = ops.call("load", deep_overlap)
+    r = ops.call("project", dict(deep_overlap, solver=solver))
     assert r["initial_max_penetration_m"] > 0.03
     assert r["solver"] == solver
     assert r["max_penetration_m"] <= 1e-4
@@ -134,29 +136,29 @@ def test_projection_separates_and_leaves_the_rest(deep_overlap, solver):
 def test_projection_without_overlap_moves_nothing(tmp_path):
     scene = write_scene(tmp_path, [FLOOR, ("a", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False),
                                    ("b", (0.2, 0.0, 0.05), (0.1, 0.1, 0.1), False)])
-    r = ops.OPS["project"](scene)
+    r = ops.call("project", scene)
     assert r["solver"] == "none"
     assert r["max_displacement_m"] == 0.0
 
 
 def test_projection_options(deep_overlap):
-    xy = ops.OPS["project"](dict(deep_overlap, xy_only=True, solver="snopt"))
+    xy = ops.call("project", dict(deep_overlap, xy_only=True, solver="snopt"))
     for name in "abc":
         assert xy["poses"][name]["body"]["xyz"][2] == pytest.approx(0.05, abs=1e-9)
     # Only `d` may move: the others stay exactly where they were.
-    only_d = ops.OPS["project"](dict(deep_overlap, movable=["d"], solver="push_out"))
+    only_d = ops.call("project", dict(deep_overlap, movable=["d"], solver="push_out"))
     assert only_d["movable"] == ["d"]
     assert only_d["poses"]["a"]["body"]["xyz"] == pytest.approx([0.0, 0.0, 0.05])
     # A region that keeps `d`'s origin at x <= 0.05 (it is at 0.05).
-    region = ops.OPS["project"](dict(deep_overlap, regions={"d": [[1.0, 0.0, 0.05]]},
+    region = ops.call("project", dict(deep_overlap, regions={"d": [[1.0, 0.0, 0.05]]},
                                      solver="snopt"))
     assert region["poses"]["d"]["body"]["xyz"][0] <= 0.05 + 1e-6
     with pytest.raises(BadRequest, match="not free"):
-        ops.OPS["project"](dict(deep_overlap, movable=["floor"]))
+        ops.call("project", dict(deep_overlap, movable=["floor"]))
 
 
 def test_projection_wall_clock_limit_falls_back_to_push_out(deep_overlap):
-    r = ops.OPS["project"](dict(deep_overlap, time_limit=1e-3))
+    r = ops.call("project", dict(deep_overlap, time_limit=1e-3))
     assert r["solver"] == "push_out"
     assert r["max_penetration_m"] <= 1e-4
     statuses = [a["status"] for a in r["attempts"]]
@@ -209,6 +211,6 @@ def test_a_box_on_a_table_is_at_rest_before_the_end(tmp_path):
         FLOOR,
         ("box", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False),
     ])
-    r = ops.OPS["simulate"](dict(scene, duration=5.0, stop_at_rest=True))
+    r = ops.call("simulate", dict(scene, duration=5.0, stop_at_rest=True))
     assert r["at_rest"] and r["sim_time"] < 2.0
     assert r["motion"]["box"]["displacement_m"] < 1e-3

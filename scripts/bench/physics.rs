@@ -21,17 +21,16 @@ use std::time::Instant;
 
 use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
-use serde_json::json;
 
 use physics_util::{Shape, block, floor, max_penetration, overlapping_heap, place, room};
 use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::physics::BridgePool;
+use scenesmith::physics::drake_projection::ProjectSolver;
 use scenesmith::physics::drake_projection::{DrakeProjectionOptions, project_drake};
 use scenesmith::physics::postprocess::{PostProcessOptions, post_process};
 use scenesmith::physics::projection::{ProjectionOptions, apply_offsets, project_objects};
-use scenesmith::physics::settle::{
-    ContactModel, ContactOptions, SettleOptions, parse_result, request_args,
-};
+use scenesmith::physics::protocol::{Load, NoArgs, SceneFiles, Simulate, Versions};
+use scenesmith::physics::settle::{ContactModel, ContactOptions, SettleOptions, simulate_args};
 use scenesmith::pipeline::{GenerateOptions, build_scene, generate};
 use scenesmith::scene::{ObjectKind, Pose};
 use scenesmith::stages::SceneState;
@@ -172,12 +171,9 @@ fn projection_part(a: &Args, pool: &BridgePool) {
         let directives = dir.path().join("scene.dmd.yaml");
         let package = dir.path().join("package.xml");
         // Build the plant once first, so the timing is the solve.
-        let _ = pool.request(
-            "load",
-            json!({"directives": directives, "package_xml": package}),
-        );
+        let _ = pool.call::<Load>(&SceneFiles::new(&directives, &package));
         let dopts = DrakeProjectionOptions {
-            solver: "snopt".into(),
+            solver: ProjectSolver::Snopt,
             time_limit: a.drake_limit,
             ..DrakeProjectionOptions::default()
         };
@@ -194,8 +190,7 @@ fn projection_part(a: &Args, pool: &BridgePool) {
                 let status = r
                     .attempts
                     .first()
-                    .and_then(|a| a["status"].as_str())
-                    .unwrap_or("")
+                    .map_or("", |a| a.status.as_str())
                     .replace("SolutionResult.", "");
                 (
                     format!("{} ({status})", r.solver),
@@ -262,16 +257,12 @@ fn contact_part(pool: &BridgePool) {
             contact,
             ..SettleOptions::default()
         };
-        let (op, args) = request_args(
+        let args = simulate_args(
             &dir.path().join("scene.dmd.yaml"),
             &dir.path().join("package.xml"),
             &opts,
         );
-        match pool
-            .request(&op, args)
-            .map_err(|e| e.to_string())
-            .and_then(|r| parse_result(&op, r).map_err(|e| e.to_string()))
-        {
+        match pool.call::<Simulate>(&args).map_err(|e| e.to_string()) {
             Ok(r) => {
                 let drift = r
                     .motion
@@ -487,10 +478,12 @@ fn main() {
         eprintln!("the Drake bridge did not start: {e}");
         std::process::exit(1);
     }
-    let drake_versions = pool.request("versions", json!({})).unwrap_or_default();
+    let drake_version = pool
+        .call::<Versions>(&NoArgs {})
+        .map_or_else(|_| "?".to_string(), |v| v.drake);
     println!(
         "# bench_physics: drake {}, {} bridge workers, {} cores",
-        drake_versions["drake"].as_str().unwrap_or("?"),
+        drake_version,
         pool.size(),
         std::thread::available_parallelism()
             .map(|n| n.get())

@@ -13,8 +13,8 @@ use std::collections::BTreeMap;
 use super::{EvalError, Stability, StabilityOptions, Unstable};
 use crate::physics::as_written::posed_objects;
 use crate::physics::collision::PosedObject;
-use crate::physics::pool::Job;
-use crate::physics::settle::{SettleOptions, SettleResult, parse_result, request_args};
+use crate::physics::protocol::Simulate;
+use crate::physics::settle::{SettleOptions, SettleReply, simulate_args};
 use crate::physics::workspace::{Role, Workspace};
 use crate::physics::{BridgePool, PhysicsError};
 use crate::scene::{ObjectKind, SceneObject, Support};
@@ -154,23 +154,25 @@ pub fn stabilities(
     }
     let mut order: Vec<usize> = (0..islands.len()).collect();
     order.sort_by_key(|&i| std::cmp::Reverse(islands[i].len()));
-    // (option index, island index, op) of each job, in submission order.
+    // (option index, island index) of each request, in submission order.
     let mut slots = Vec::new();
-    let mut jobs = Vec::new();
+    let mut requests = Vec::new();
     for &i in &order {
         for (k, o) in opts.iter().enumerate() {
-            let (op, args) =
-                request_args(&directives[i], &workspace.package_xml(), &settle_options(o));
-            jobs.push(Job::new(&op, args));
-            slots.push((k, i, op));
+            requests.push(simulate_args(
+                &directives[i],
+                &workspace.package_xml(),
+                &settle_options(o),
+            ));
+            slots.push((k, i));
         }
     }
-    let mut results: Vec<Vec<Option<SettleResult>>> = opts
+    let mut results: Vec<Vec<Option<SettleReply>>> = opts
         .iter()
         .map(|_| islands.iter().map(|_| None).collect())
         .collect();
-    for ((k, i, op), reply) in slots.into_iter().zip(pool.run_all(jobs)) {
-        let r = parse_result(&op, reply.map_err(PhysicsError::from)?)?;
+    for ((k, i), reply) in slots.into_iter().zip(pool.call_all::<Simulate>(&requests)) {
+        let r = reply.map_err(PhysicsError::from)?;
         tracing::info!(
             "STB ({:?}) island of {} ({} free): {:.2} s simulated{} in {:.1} s wall ({:.1} ms/step, plant {:.1} s)",
             opts[k].contact.model,
@@ -188,7 +190,7 @@ pub fn stabilities(
         .iter()
         .zip(results)
         .map(|(o, rs)| {
-            let rs: Vec<SettleResult> = rs.into_iter().flatten().collect();
+            let rs: Vec<SettleReply> = rs.into_iter().flatten().collect();
             verdicts(o, islands.len(), &rs)
         })
         .collect())
@@ -209,7 +211,7 @@ fn settle_options(opts: &StabilityOptions) -> SettleOptions {
 }
 
 /// STB and the motion statistics from the islands' results.
-fn verdicts(opts: &StabilityOptions, islands: usize, results: &[SettleResult]) -> Stability {
+fn verdicts(opts: &StabilityOptions, islands: usize, results: &[SettleReply]) -> Stability {
     let mut unstable = Vec::new();
     let (mut n, mut sum_d, mut sum_r, mut max_d) = (0usize, 0.0, 0.0, 0.0f64);
     let mut timed_out = 0;
@@ -265,15 +267,16 @@ fn verdicts(opts: &StabilityOptions, islands: usize, results: &[SettleResult]) -
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::settle::Motion;
+    use crate::physics::protocol::{CacheStats, ContactArgs};
+    use crate::physics::settle::{ContactModel, Motion};
 
     fn island(
         motion: &[(&str, f64)],
         sim_time: f64,
         at_rest: bool,
         timed_out: bool,
-    ) -> SettleResult {
-        SettleResult {
+    ) -> SettleReply {
+        SettleReply {
             poses: BTreeMap::new(),
             motion: motion
                 .iter()
@@ -296,6 +299,15 @@ mod tests {
             wall_s: 1.0,
             build_s: 0.0,
             ms_per_step: 1.0,
+            max_speed: 0.0,
+            max_angular_speed: 0.0,
+            contact: ContactArgs {
+                model: ContactModel::AsWritten,
+                approximation: None,
+            },
+            time_step: 1e-3,
+            sim_s: 1.0,
+            cache: CacheStats { hits: 0, misses: 1 },
         }
     }
 

@@ -15,6 +15,8 @@ use std::time::{Duration, Instant};
 use serde::Deserialize;
 use serde_json::{Value, json};
 
+use super::protocol::Op;
+
 /// Protocol version this client speaks.
 pub const PROTOCOL: u64 = 1;
 
@@ -80,6 +82,14 @@ pub enum BridgeError {
     /// A reply that does not follow the protocol.
     #[error("Drake bridge protocol error: {0}")]
     Protocol(String),
+    /// A successful reply whose result does not parse as the operation's reply type.
+    #[error("the Drake bridge's reply to `{op}` does not follow the protocol: {cause}")]
+    BadReply {
+        /// Operation.
+        op: String,
+        /// What did not parse.
+        cause: String,
+    },
 }
 
 /// How to start the bridge.
@@ -380,8 +390,17 @@ impl Bridge {
         Ok(())
     }
 
-    /// Sends one request and returns its result. If the process dies, it is restarted and the
-    /// request retried once.
+    /// Runs operation `O`: sends its arguments, parses its reply. If the process dies, it is
+    /// restarted and the request retried once.
+    pub fn call<O: Op>(&mut self, args: &O::Args) -> Result<O::Reply, BridgeError> {
+        let args = encode_args::<O>(args)?;
+        let result = self.request(O::NAME, args)?;
+        decode_reply::<O>(result)
+    }
+
+    /// Sends one request as JSON and returns its result as JSON, for requests that are not
+    /// an [`Op`] (tests of the protocol's error handling). If the process dies, it is restarted
+    /// and the request retried once.
     pub fn request(&mut self, op: &str, args: Value) -> Result<Value, BridgeError> {
         let mut reply = None;
         for attempt in 0..2 {
@@ -438,6 +457,30 @@ impl Bridge {
             })
         }
     }
+}
+
+/// `O`'s arguments as the JSON the bridge reads.
+pub(crate) fn encode_args<O: Op>(args: &O::Args) -> Result<Value, BridgeError> {
+    serde_json::to_value(args).map_err(|e| {
+        BridgeError::Protocol(format!("arguments of `{}` do not serialise: {e}", O::NAME))
+    })
+}
+
+/// `O`'s reply from the JSON the bridge sent: a missing or mistyped field is an error naming
+/// the operation.
+pub(crate) fn decode_reply<O: Op>(result: Value) -> Result<O::Reply, BridgeError> {
+    decode(O::NAME, result)
+}
+
+/// The reply to operation `op` as `R`; see [`decode_reply`].
+pub(crate) fn decode<R: serde::de::DeserializeOwned>(
+    op: &str,
+    result: Value,
+) -> Result<R, BridgeError> {
+    serde_json::from_value(result).map_err(|e| BridgeError::BadReply {
+        op: op.to_string(),
+        cause: e.to_string(),
+    })
 }
 
 impl Drop for Bridge {

@@ -7,19 +7,17 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use serde::Deserialize;
-use serde_json::{Value, json};
-
 use super::PhysicsError;
 use super::pool::BridgePool;
 use super::projection::XyRegion;
-use crate::scene::Pose;
+use super::protocol::{Project, ProjectArgs, SceneFiles};
+pub use super::protocol::{ProjectReply, ProjectSolver};
 
 /// Options of the Drake projection.
 #[derive(Debug, Clone)]
 pub struct DrakeProjectionOptions {
-    /// `auto` (SNOPT then IPOPT then push-out), `snopt`, `ipopt` or `push_out`.
-    pub solver: String,
+    /// SNOPT then IPOPT then push-out, or one of them.
+    pub solver: ProjectSolver,
     /// Lower bound on every candidate pair's signed distance, metres.
     pub min_distance: f64,
     /// Largest penetration accepted, metres.
@@ -41,7 +39,7 @@ pub struct DrakeProjectionOptions {
 impl Default for DrakeProjectionOptions {
     fn default() -> Self {
         DrakeProjectionOptions {
-            solver: "auto".into(),
+            solver: ProjectSolver::Auto,
             min_distance: 1e-5,
             tolerance: 1e-4,
             candidate_distance: 0.05,
@@ -54,49 +52,29 @@ impl Default for DrakeProjectionOptions {
     }
 }
 
-/// The bridge's reply to `project`.
-#[derive(Debug, Clone, Deserialize)]
-pub struct DrakeProjectionResult {
-    /// Free-body poses after projection: instance -> body -> `world_from_body`.
-    pub poses: BTreeMap<String, BTreeMap<String, Pose>>,
-    /// Which method produced them: `none`, `snopt`, `ipopt` or `push_out`.
-    pub solver: String,
-    /// Deepest penetration before, metres.
-    pub initial_max_penetration_m: f64,
-    /// Deepest penetration after, metres.
-    pub max_penetration_m: f64,
-    /// Mean displacement of the movable bodies, metres.
-    pub mean_displacement_m: f64,
-    /// Largest displacement, metres.
-    pub max_displacement_m: f64,
-    /// Distance constraints in the program.
-    pub pairs: usize,
-    /// Solver attempts with their statuses.
-    pub attempts: Vec<Value>,
-    /// Wall time in the bridge, seconds.
-    pub wall_s: f64,
-}
-
 /// Arguments of a `project` request.
-pub fn request_args(directives: &Path, package_xml: &Path, opts: &DrakeProjectionOptions) -> Value {
-    let regions: BTreeMap<&String, &Vec<[f64; 3]>> = opts
-        .regions
-        .iter()
-        .map(|(k, r)| (k, &r.halfplanes))
-        .collect();
-    json!({
-        "directives": directives,
-        "package_xml": package_xml,
-        "solver": opts.solver,
-        "min_distance": opts.min_distance,
-        "tolerance": opts.tolerance,
-        "candidate_distance": opts.candidate_distance,
-        "time_limit": opts.time_limit,
-        "xy_only": opts.xy_only,
-        "floor_z": opts.floor_z,
-        "movable": opts.movable,
-        "regions": regions,
-    })
+pub fn project_args(
+    directives: &Path,
+    package_xml: &Path,
+    opts: &DrakeProjectionOptions,
+) -> ProjectArgs {
+    ProjectArgs {
+        scene: SceneFiles::new(directives, package_xml),
+        poses: None,
+        solver: opts.solver,
+        min_distance: opts.min_distance,
+        tolerance: opts.tolerance,
+        candidate_distance: opts.candidate_distance,
+        time_limit: opts.time_limit,
+        xy_only: opts.xy_only,
+        floor_z: opts.floor_z,
+        movable: opts.movable.clone(),
+        regions: opts
+            .regions
+            .iter()
+            .map(|(k, r)| (k.clone(), r.halfplanes.clone()))
+            .collect(),
+    }
 }
 
 /// Runs the Drake projection of a directives file on the pool.
@@ -105,10 +83,6 @@ pub fn project_drake(
     directives: &Path,
     package_xml: &Path,
     opts: &DrakeProjectionOptions,
-) -> Result<DrakeProjectionResult, PhysicsError> {
-    let reply = pool.request("project", request_args(directives, package_xml, opts))?;
-    serde_json::from_value(reply).map_err(|e| PhysicsError::Reply {
-        op: "project".into(),
-        detail: e.to_string(),
-    })
+) -> Result<ProjectReply, PhysicsError> {
+    Ok(pool.call::<Project>(&project_args(directives, package_xml, opts))?)
 }

@@ -9,6 +9,7 @@
 //! | [`projection`] | native projection: iterated linearised signed-distance QPs |
 //! | [`drake_projection`] | the Drake projection (SNOPT/IPOPT) through the bridge, the reference |
 //! | [`bridge`], [`pool`] | one bridge process; N of them in parallel |
+//! | [`protocol`] | the bridge's operations with typed arguments and replies; their JSON Schema |
 //! | [`workspace`] | scene files for the bridge: assets plus one directives file per subset |
 //! | [`settle`] | gravity settling requests and replies |
 //! | [`removal`] | which objects fell, and why |
@@ -21,6 +22,7 @@ pub mod drake_projection;
 pub mod pool;
 pub mod postprocess;
 pub mod projection;
+pub mod protocol;
 pub mod removal;
 pub mod settle;
 pub mod workspace;
@@ -47,14 +49,6 @@ pub enum PhysicsError {
         path: std::path::PathBuf,
         /// OS error.
         cause: std::io::Error,
-    },
-    /// The bridge answered with something this build does not understand.
-    #[error("unexpected reply to `{op}` from the Drake bridge: {detail}")]
-    Reply {
-        /// Operation.
-        op: String,
-        /// What was wrong.
-        detail: String,
     },
     /// An object named in a request is not in the scene.
     #[error("object {0:?} is not in the scene")]

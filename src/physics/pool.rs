@@ -14,7 +14,8 @@ use std::sync::atomic::{AtomicU32, Ordering};
 
 use serde_json::Value;
 
-use super::bridge::{Bridge, BridgeConfig, BridgeError};
+use super::bridge::{Bridge, BridgeConfig, BridgeError, decode_reply, encode_args};
+use super::protocol::Op;
 
 /// One request for [`BridgePool::run_all`]: operation name and arguments.
 #[derive(Debug, Clone)]
@@ -26,8 +27,17 @@ pub struct Job {
 }
 
 impl Job {
-    /// A job for `op` with `args`.
-    pub fn new(op: &str, args: Value) -> Job {
+    /// A job for operation `O` with its arguments.
+    pub fn of<O: Op>(args: &O::Args) -> Result<Job, BridgeError> {
+        Ok(Job {
+            op: O::NAME.to_string(),
+            args: encode_args::<O>(args)?,
+        })
+    }
+
+    /// A job for `op` with JSON arguments, for requests that are not an [`Op`] (protocol
+    /// tests).
+    pub fn raw(op: &str, args: Value) -> Job {
         Job {
             op: op.to_string(),
             args,
@@ -167,7 +177,32 @@ impl BridgePool {
         }
     }
 
-    /// Sends one request to a worker (the one that last saw the same directives if it is
+    /// Runs operation `O` on a worker (see [`BridgePool::request`] for which one).
+    pub fn call<O: Op>(&self, args: &O::Args) -> Result<O::Reply, BridgeError> {
+        let result = self.request(O::NAME, encode_args::<O>(args)?)?;
+        decode_reply::<O>(result)
+    }
+
+    /// Runs operation `O` once per argument set, in parallel over the workers; replies come
+    /// back in order.
+    pub fn call_all<O: Op>(&self, args: &[O::Args]) -> Vec<Result<O::Reply, BridgeError>> {
+        let jobs: Result<Vec<Job>, BridgeError> = args.iter().map(Job::of::<O>).collect();
+        match jobs {
+            Ok(jobs) => self
+                .run_all(jobs)
+                .into_iter()
+                .map(|r| r.and_then(decode_reply::<O>))
+                .collect(),
+            Err(e) => {
+                let msg = e.to_string();
+                args.iter()
+                    .map(|_| Err(BridgeError::Protocol(msg.clone())))
+                    .collect()
+            }
+        }
+    }
+
+    /// Sends one JSON request to a worker (the one that last saw the same directives if it is
     /// free, else the first free one, else waits for the preferred one).
     pub fn request(&self, op: &str, args: Value) -> Result<Value, BridgeError> {
         let key = directives_key(&args);

@@ -25,12 +25,13 @@ use serde::Serialize;
 use super::PhysicsError;
 use super::as_written::posed_objects;
 use super::collision::penetrating_pairs;
-use super::pool::{BridgePool, Job};
+use super::pool::BridgePool;
 use super::projection::{
     Movable, ProjectionOptions, ProjectionReport, XyRegion, apply_offsets, project_objects,
 };
+use super::protocol::Simulate;
 use super::removal::{RemovalRules, furniture_verdict, manipuland_verdict};
-use super::settle::{SettleOptions, SettleResult, parse_result, request_args};
+use super::settle::{SettleOptions, SettleReply, simulate_args};
 use super::workspace::{Role, Workspace};
 use crate::scene::{ObjectKind, PlacedAgain, Pose, Scene, SceneObject, Support};
 use crate::stages::{SceneState, StageState};
@@ -393,26 +394,20 @@ fn settle_subsets(
     workspace: &mut Workspace,
     subsets: &[(String, BTreeMap<String, Role>)],
     opts: &SettleOptions,
-) -> Result<Vec<SettleResult>, PhysicsError> {
-    let mut jobs = Vec::new();
+) -> Result<Vec<SettleReply>, PhysicsError> {
+    let mut requests = Vec::new();
     for (_, members) in subsets {
         let directives = workspace.write_subset(state, members)?;
-        let (op, args) = request_args(&directives, &workspace.package_xml(), opts);
-        jobs.push(Job::new(&op, args));
+        requests.push(simulate_args(&directives, &workspace.package_xml(), opts));
     }
-    let op = if opts.stop_at_rest {
-        "settle"
-    } else {
-        "simulate"
-    };
-    pool.run_all(jobs)
+    pool.call_all::<Simulate>(&requests)
         .into_iter()
-        .map(|r| parse_result(op, r?))
+        .map(|r| r.map_err(PhysicsError::from))
         .collect()
 }
 
 /// The new `world_from_object` of `id` from a settle result, if the object was free in it.
-fn settled_pose(state: &SceneState, result: &SettleResult, id: &str) -> Option<Pose> {
+fn settled_pose(state: &SceneState, result: &SettleReply, id: &str) -> Option<Pose> {
     let obj = state.scene.object(id)?;
     let asset = state.assets.get(&obj.asset)?;
     let root = asset.links.first()?;
@@ -420,7 +415,7 @@ fn settled_pose(state: &SceneState, result: &SettleResult, id: &str) -> Option<P
     Some(world_from_body.compose(&root.model_from_link.inverse()))
 }
 
-fn subset_report(subset: &str, r: &SettleResult) -> SubsetReport {
+fn subset_report(subset: &str, r: &SettleReply) -> SubsetReport {
     SubsetReport {
         subset: subset.to_string(),
         free_bodies: r.free_bodies,

@@ -1,22 +1,24 @@
-//! Gravity settling through the bridge: the request (`settle` / `simulate` ops, see
-//! `drake_bridge/settle.py`) and its typed reply.
+//! Gravity settling through the bridge: the options and the `simulate` request built from them
+//! (`drake_bridge/settle.py`; the reply is [`SettleReply`]).
 //!
 //! The bridge simulates a directives file as written (Drake's default plant at 1 ms steps)
 //! until every free body has been slower than the rest thresholds for `rest_time`, or the time
 //! cap. Which objects are free and which welded is decided by whoever wrote the directives
 //! (see [`super::workspace`] and [`super::postprocess`]).
 
-use std::collections::BTreeMap;
 use std::path::Path;
 
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
-use serde_json::{Value, json};
 
-use super::PhysicsError;
-use crate::scene::Pose;
+use super::protocol::{ContactArgs, SceneFiles, SimulateArgs, SimulationArgs};
+pub use super::protocol::{Motion, SettleReply};
+
+/// Simulated time between the bridge's rest checks, seconds.
+const CHECK_INTERVAL_S: f64 = 0.01;
 
 /// Contact model of a simulation.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum ContactModel {
     /// Drake's default plant (`MultibodyPlantConfig()`: hydroelastic with point fallback) on
@@ -95,82 +97,26 @@ impl Default for SettleOptions {
     }
 }
 
-/// How far one model instance moved during a simulation.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Motion {
-    /// Largest displacement of any of its free bodies, metres.
-    pub displacement_m: f64,
-    /// Largest rotation of any of its free bodies, radians.
-    pub rotation_rad: f64,
-    /// Height of the (first) free body at the start, metres.
-    pub start_z: f64,
-    /// ... and at the end.
-    pub end_z: f64,
-}
-
-/// The bridge's reply to `settle` / `simulate`.
-#[derive(Debug, Clone, Deserialize)]
-pub struct SettleResult {
-    /// Final free-body poses: instance -> body -> `world_from_body`.
-    pub poses: BTreeMap<String, BTreeMap<String, Pose>>,
-    /// Motion per instance.
-    pub motion: BTreeMap<String, Motion>,
-    /// Simulated time, seconds.
-    pub sim_time: f64,
-    /// Steps taken.
-    pub steps: u64,
-    /// Every free body was at rest at the end.
-    pub at_rest: bool,
-    /// Stopped by the wall-clock cap.
-    pub timed_out: bool,
-    /// Deepest overlap at the end between different instances, metres.
-    pub max_penetration_m: f64,
-    /// Free bodies simulated.
-    pub free_bodies: usize,
-    /// Wall time of the request in the bridge, seconds.
-    pub wall_s: f64,
-    /// Time spent building the plant (0 on a cache hit), seconds.
-    pub build_s: f64,
-    /// Mean wall time per step, milliseconds.
-    pub ms_per_step: f64,
-}
-
-/// Arguments of a `settle` (or, with `stop_at_rest: false`, `simulate`) request.
-pub fn request_args(
-    directives: &Path,
-    package_xml: &Path,
-    opts: &SettleOptions,
-) -> (String, Value) {
-    let op = if opts.stop_at_rest {
-        "settle"
-    } else {
-        "simulate"
-    };
-    let duration_key = if opts.stop_at_rest {
-        "max_time"
-    } else {
-        "duration"
-    };
-    let mut args = json!({
-        "directives": directives,
-        "package_xml": package_xml,
-        "time_step": opts.time_step,
-        "rest_speed": opts.rest_speed,
-        "rest_angular_speed": opts.rest_angular_speed,
-        "rest_time": opts.rest_time,
-        "stop_at_rest": opts.stop_at_rest,
-        "wall_limit": opts.wall_limit,
-        "contact": { "model": opts.contact.model },
-        "floor_z": opts.floor_z,
-    });
-    args[duration_key] = json!(opts.max_time);
-    (op.to_string(), args)
-}
-
-/// Parses a `settle` / `simulate` reply.
-pub fn parse_result(op: &str, reply: Value) -> Result<SettleResult, PhysicsError> {
-    serde_json::from_value(reply).map_err(|e| PhysicsError::Reply {
-        op: op.to_string(),
-        detail: e.to_string(),
-    })
+/// The `simulate` request for a directives file: the whole `max_time`, or stopping at rest
+/// when `opts.stop_at_rest` (the two differ only in that flag, so every caller uses one op).
+pub fn simulate_args(directives: &Path, package_xml: &Path, opts: &SettleOptions) -> SimulateArgs {
+    SimulateArgs {
+        sim: SimulationArgs {
+            scene: SceneFiles::new(directives, package_xml),
+            poses: None,
+            time_step: opts.time_step,
+            rest_speed: opts.rest_speed,
+            rest_angular_speed: opts.rest_angular_speed,
+            rest_time: opts.rest_time,
+            check_interval: CHECK_INTERVAL_S,
+            wall_limit: opts.wall_limit,
+            contact: ContactArgs {
+                model: opts.contact.model,
+                approximation: None,
+            },
+            floor_z: opts.floor_z,
+        },
+        duration: opts.max_time,
+        stop_at_rest: opts.stop_at_rest,
+    }
 }

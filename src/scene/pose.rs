@@ -110,10 +110,24 @@ impl Pose {
     }
 }
 
-#[derive(Serialize, Deserialize)]
+/// A pose on the wire: translation in metres, unit quaternion in Drake's order.
+#[derive(Serialize, Deserialize, schemars::JsonSchema)]
+#[schemars(rename = "Pose")]
 struct PoseRepr {
+    /// Translation, metres.
     xyz: [f64; 3],
+    /// Unit quaternion `[w, x, y, z]`.
     wxyz: [f64; 4],
+}
+
+impl schemars::JsonSchema for Pose {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "Pose".into()
+    }
+
+    fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        PoseRepr::json_schema(generator)
+    }
 }
 
 impl Serialize for Pose {

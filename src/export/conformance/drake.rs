@@ -3,12 +3,11 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use serde_json::{Value, json};
-
-use super::{CheckRow, ConformanceError, ExpObject, Rows, SceneFacts, close, num, request_or_row};
+use super::{CheckRow, ConformanceError, ExpObject, Rows, SceneFacts, call_or_row, close};
 use crate::export::view::Hold;
 use crate::formats::scene_dir::names;
 use crate::physics::Bridge;
+use crate::physics::protocol::{Load, LoadedInstance, SceneFiles};
 
 pub(super) fn check_drake(
     bridge: &mut Bridge,
@@ -29,21 +28,18 @@ pub(super) fn check_drake(
         );
         return Ok(None);
     }
-    let args = json!({"directives": directives, "package_xml": dir.join(names::PACKAGE_XML)});
-    let Some(loaded) = request_or_row(bridge, "load", args, &mut rows, "loads")? else {
+    let files = SceneFiles::new(directives, dir.join(names::PACKAGE_XML));
+    let Some(loaded) = call_or_row::<Load>(bridge, &files, &mut rows, "loads")? else {
         return Ok(None);
     };
-    let instances: BTreeMap<String, &Value> = loaded["model_instances"]
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .filter_map(|m| Some((m["name"].as_str()?.to_string(), m)))
-                .collect()
-        })
-        .unwrap_or_default();
+    let instances: BTreeMap<&str, &LoadedInstance> = loaded
+        .model_instances
+        .iter()
+        .map(|m| (m.name.as_str(), m))
+        .collect();
     let mut problems = Vec::new();
     for o in exp {
-        if !instances.contains_key(&o.id) {
+        if !instances.contains_key(o.id.as_str()) {
             problems.push(format!("{} missing", o.id));
         }
     }
@@ -61,11 +57,11 @@ pub(super) fn check_drake(
     let mut mass = 0.0;
     let mut joints = 0;
     for o in exp {
-        let Some(m) = instances.get(&o.id) else {
+        let Some(m) = instances.get(o.id.as_str()) else {
             continue;
         };
         if o.hold != Hold::Static {
-            let got = num(&m["mass"]).unwrap_or(f64::NAN);
+            let got = m.mass;
             mass += got;
             if !close(got, o.mass, 1e-9, 1e-12) {
                 problems.push(format!("{}: {got} kg, scene {} kg", o.id, o.mass));
@@ -82,13 +78,10 @@ pub(super) fn check_drake(
 
     let mut problems = Vec::new();
     for o in exp {
-        let Some(m) = instances.get(&o.id) else {
+        let Some(m) = instances.get(o.id.as_str()) else {
             continue;
         };
-        let got: Vec<&Value> = m["joints"]
-            .as_array()
-            .map(|a| a.iter().collect())
-            .unwrap_or_default();
+        let got = &m.joints;
         joints += got.len();
         if got.len() != o.joints.len() {
             problems.push(format!(
@@ -99,20 +92,21 @@ pub(super) fn check_drake(
             ));
         }
         for j in &o.joints {
-            let Some(g) = got.iter().find(|g| g["name"] == j.drake_name.as_str()) else {
+            let Some(g) = got.iter().find(|g| g.name == j.drake_name) else {
                 problems.push(format!("{}: joint {} missing", o.id, j.drake_name));
                 continue;
             };
-            let lo = num(&g["lower"][0]).unwrap_or(f64::NAN);
-            let hi = num(&g["upper"][0]).unwrap_or(f64::NAN);
+            // A joint without limits compares as NaN: never close to the scene's.
+            let lo = g.lower.first().copied().unwrap_or(f64::NAN);
+            let hi = g.upper.first().copied().unwrap_or(f64::NAN);
             if !close(lo, j.lower, 0.0, 1e-9) || !close(hi, j.upper, 0.0, 1e-9) {
                 problems.push(format!(
                     "{}/{}: limits [{lo}, {hi}], scene [{}, {}]",
                     o.id, j.drake_name, j.lower, j.upper
                 ));
             }
-            if g["type"] != j.kind.as_str() {
-                problems.push(format!("{}/{}: type {}", o.id, j.drake_name, g["type"]));
+            if g.kind != j.kind.as_str() {
+                problems.push(format!("{}/{}: type {}", o.id, j.drake_name, g.kind));
             }
         }
     }
@@ -127,6 +121,6 @@ pub(super) fn check_drake(
         objects: instances.len(),
         mass_kg: mass,
         joints,
-        colliders: loaded["num_collision_geometries"].as_u64().unwrap_or(0) as usize,
+        colliders: loaded.num_collision_geometries,
     }))
 }

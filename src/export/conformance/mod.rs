@@ -14,7 +14,6 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use serde::Serialize;
-use serde_json::Value;
 
 mod drake;
 mod glb;
@@ -25,6 +24,7 @@ use super::view::{AssetView, Hold, ObjectView, SceneView};
 use super::{ExportError, ExportFormat, ExportSet, mjcf};
 use crate::assets::JointKind;
 use crate::geometry::mesh::bounds_of;
+use crate::physics::protocol::{Aabb, Op, UsdFinding};
 use crate::physics::{Bridge, BridgeError};
 use crate::stages::SceneState;
 
@@ -115,7 +115,7 @@ pub struct ConformanceReport {
     /// Per-format facts for cross-format comparisons (object count, total mass, joint count).
     pub facts: BTreeMap<String, SceneFacts>,
     /// USD validator findings (warnings included).
-    pub usd_findings: Vec<Value>,
+    pub usd_findings: Vec<UsdFinding>,
     /// Wall time per format, seconds.
     pub seconds: BTreeMap<String, f64>,
     /// True when every row passed.
@@ -134,8 +134,6 @@ pub struct SceneFacts {
     /// Convex collision pieces (colliders).
     pub colliders: usize,
 }
-
-type Aabb = [[f64; 3]; 2];
 
 #[derive(Debug)]
 struct ExpLink {
@@ -248,23 +246,6 @@ fn scene_facts(exp: &[ExpObject]) -> SceneFacts {
         joints: exp.iter().map(|o| o.joints.len()).sum(),
         colliders: exp.iter().flat_map(|o| &o.links).map(|l| l.pieces).sum(),
     }
-}
-
-fn num(v: &Value) -> Option<f64> {
-    v.as_f64()
-}
-
-fn aabb_of(v: &Value) -> Option<Aabb> {
-    let a = v.as_array()?;
-    let corner = |c: &Value| -> Option<[f64; 3]> {
-        let c = c.as_array()?;
-        Some([
-            c.first()?.as_f64()?,
-            c.get(1)?.as_f64()?,
-            c.get(2)?.as_f64()?,
-        ])
-    };
-    Some([corner(a.first()?)?, corner(a.get(1)?)?])
 }
 
 fn aabb_gap(a: &Aabb, b: &Aabb) -> f64 {
@@ -421,15 +402,15 @@ pub fn run_gate(
     })
 }
 
-/// A bridge reply, or `None` after recording the consumer's refusal as a failed row.
-fn request_or_row(
+/// The reply to operation `O`, or `None` after recording the consumer's refusal as a failed
+/// row.
+fn call_or_row<O: Op>(
     bridge: &mut Bridge,
-    op: &str,
-    args: Value,
+    args: &O::Args,
     rows: &mut Rows<'_>,
     check: &str,
-) -> Result<Option<Value>, ConformanceError> {
-    match bridge.request(op, args) {
+) -> Result<Option<O::Reply>, ConformanceError> {
+    match bridge.call::<O>(args) {
         Ok(v) => Ok(Some(v)),
         Err(BridgeError::Remote { message, .. }) => {
             rows.fail(check, "loads", message);
@@ -560,10 +541,5 @@ mod tests {
         assert_eq!(b, [[-1.0, 0.0, 0.0], [1.0, 2.0, 3.0]]);
         assert_eq!(aabb_gap(&a, &b), 1.0);
         assert!(close(1.0, 1.0 + 1e-10, 1e-9, 0.0) && !close(1.0, 1.1, 1e-9, 0.0));
-        assert_eq!(
-            aabb_of(&serde_json::json!([[0, 1, 2], [3, 4, 5]])),
-            Some([[0.0, 1.0, 2.0], [3.0, 4.0, 5.0]])
-        );
-        assert_eq!(aabb_of(&serde_json::json!(null)), None);
     }
 }

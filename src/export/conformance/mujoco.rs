@@ -3,16 +3,17 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use serde_json::{Value, json};
-
 use super::{
     CheckRow, ConformanceError, ExpObject, Rows, STB_MAX_DISPLACEMENT_M, STB_MAX_ROTATION_RAD,
-    SceneFacts, Stability, aabb_of, alignment, close, num, request_or_row,
+    SceneFacts, Stability, alignment, call_or_row, close,
 };
 use crate::assets::JointKind;
 use crate::export::paths;
 use crate::export::view::Hold;
 use crate::physics::Bridge;
+use crate::physics::protocol::{
+    MujocoBody, MujocoCheck, MujocoCheckArgs, MujocoCheckReply, MujocoJoint,
+};
 
 pub(super) fn check_mujoco(
     bridge: &mut Bridge,
@@ -35,52 +36,38 @@ pub(super) fn check_mujoco(
         );
         return Ok(None);
     }
-    let Some(r) = request_or_row(
-        bridge,
-        "mujoco_check",
-        json!({"xml": xml, "seconds": seconds}),
-        &mut rows,
-        "loads",
-    )?
-    else {
+    let args = MujocoCheckArgs {
+        xml,
+        seconds,
+        probe_joints: BTreeMap::new(),
+    };
+    let Some(r) = call_or_row::<MujocoCheck>(bridge, &args, &mut rows, "loads")? else {
         return Ok(None);
     };
-    let bodies: BTreeMap<&str, &Value> = r["bodies"]
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .filter_map(|b| Some((b["name"].as_str()?, b)))
-                .collect()
-        })
-        .unwrap_or_default();
+    let bodies: BTreeMap<&str, &MujocoBody> =
+        r.bodies.iter().map(|b| (b.name.as_str(), b)).collect();
     rows.add(
         "loads",
         format!("MuJoCo loads {}", paths::MJCF_FILE),
         format!(
             "MuJoCo {} in {:.2} s: {} bodies, {} meshes",
-            r["mujoco"].as_str().unwrap_or("?"),
-            num(&r["load_seconds"]).unwrap_or(0.0),
+            r.mujoco,
+            r.load_seconds,
             bodies.len(),
-            r["counts"]["meshes"]
+            r.counts.meshes
         ),
         vec![],
     );
 
     let (objects, mass, colliders) = body_rows(&mut rows, exp, &bodies);
-    let joints: BTreeMap<&str, &Value> = r["joints"]
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .filter_map(|j| Some((j["name"].as_str()?, j)))
-                .collect()
-        })
-        .unwrap_or_default();
+    let joints: BTreeMap<&str, &MujocoJoint> =
+        r.joints.iter().map(|j| (j.name.as_str(), j)).collect();
     joint_rows(&mut rows, exp, &joints);
     alignment(&mut rows, exp, |l| {
         let b = bodies.get(l.mjcf_body.as_str());
         (
-            b.and_then(|b| aabb_of(&b["collision_aabb"])),
-            b.and_then(|b| aabb_of(&b["visual_aabb"])),
+            b.and_then(|b| b.collision_aabb),
+            b.and_then(|b| b.visual_aabb),
         )
     });
 
@@ -100,7 +87,7 @@ pub(super) fn check_mujoco(
 fn body_rows(
     rows: &mut Rows<'_>,
     exp: &[ExpObject],
-    bodies: &BTreeMap<&str, &Value>,
+    bodies: &BTreeMap<&str, &MujocoBody>,
 ) -> (usize, f64, usize) {
     let n_links: usize = exp.iter().map(|o| o.links.len()).sum();
     let mut problems = Vec::new();
@@ -120,8 +107,7 @@ fn body_rows(
             .links
             .first()
             .and_then(|l| bodies.get(l.mjcf_body.as_str()))
-            .and_then(|b| b["free"].as_bool())
-            .unwrap_or(false);
+            .is_some_and(|b| b.free);
         if free != (o.hold == Hold::Free) {
             problems.push(format!(
                 "{}: {} but the scene has it {}",
@@ -155,7 +141,7 @@ fn body_rows(
             .links
             .iter()
             .filter_map(|l| bodies.get(l.mjcf_body.as_str()))
-            .filter_map(|b| num(&b["mass"]))
+            .map(|b| b.mass)
             .sum();
         mass += got;
         if !close(got, o.mass, 1e-9, 1e-12) {
@@ -176,8 +162,7 @@ fn body_rows(
         for l in &o.links {
             let got = bodies
                 .get(l.mjcf_body.as_str())
-                .and_then(|b| b["collision_geoms"].as_u64())
-                .unwrap_or(0) as usize;
+                .map_or(0, |b| b.collision_geoms);
             colliders += got;
             if got != l.pieces {
                 problems.push(format!(
@@ -199,7 +184,7 @@ fn body_rows(
 }
 
 /// Hinges and slides: type, range in radians, world axis (sign), initial position.
-fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], joints: &BTreeMap<&str, &Value>) {
+fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], joints: &BTreeMap<&str, &MujocoJoint>) {
     let mut problems = Vec::new();
     let n_joints: usize = exp.iter().map(|o| o.joints.len()).sum();
     for o in exp {
@@ -212,25 +197,17 @@ fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], joints: &BTreeMap<&str, &V
                 JointKind::Revolute => "hinge",
                 JointKind::Prismatic => "slide",
             };
-            if g["type"] != want {
-                problems.push(format!("{}: type {}, want {want}", j.mjcf_name, g["type"]));
+            if g.kind != want {
+                problems.push(format!("{}: type {}, want {want}", j.mjcf_name, g.kind));
             }
-            let lo = num(&g["range"][0]).unwrap_or(f64::NAN);
-            let hi = num(&g["range"][1]).unwrap_or(f64::NAN);
-            if g["limited"] != true
-                || !close(lo, j.lower, 0.0, 1e-9)
-                || !close(hi, j.upper, 0.0, 1e-9)
-            {
+            let [lo, hi] = g.range;
+            if !g.limited || !close(lo, j.lower, 0.0, 1e-9) || !close(hi, j.upper, 0.0, 1e-9) {
                 problems.push(format!(
                     "{}: range [{lo}, {hi}], scene [{}, {}] rad",
                     j.mjcf_name, j.lower, j.upper
                 ));
             }
-            let axis = [
-                num(&g["axis_world"][0]).unwrap_or(0.0),
-                num(&g["axis_world"][1]).unwrap_or(0.0),
-                num(&g["axis_world"][2]).unwrap_or(0.0),
-            ];
+            let axis = g.axis_world;
             let dot: f64 = (0..3).map(|k| axis[k] * j.axis_world[k]).sum();
             if dot < 1.0 - 1e-6 {
                 problems.push(format!(
@@ -238,10 +215,10 @@ fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], joints: &BTreeMap<&str, &V
                     j.mjcf_name, j.axis_world
                 ));
             }
-            if !close(num(&g["qpos0"]).unwrap_or(f64::NAN), j.q, 0.0, 1e-9) {
+            if !close(g.qpos0, j.q, 0.0, 1e-9) {
                 problems.push(format!(
                     "{}: initial position {}, scene {}",
-                    j.mjcf_name, g["qpos0"], j.q
+                    j.mjcf_name, g.qpos0, j.q
                 ));
             }
         }
@@ -258,24 +235,24 @@ fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], joints: &BTreeMap<&str, &V
 fn run_rows(
     rows: &mut Rows<'_>,
     exp: &[ExpObject],
-    r: &Value,
-    bodies: &BTreeMap<&str, &Value>,
+    r: &MujocoCheckReply,
+    bodies: &BTreeMap<&str, &MujocoBody>,
     seconds: f64,
     floor_z: f64,
 ) -> Stability {
-    let finite = r["finite"].as_bool().unwrap_or(false);
-    let warnings = r["warnings"].as_object().cloned().unwrap_or_default();
+    let finite = r.finite;
+    let warnings = &r.warnings;
     let mut problems = Vec::new();
     if !finite {
         problems.push("state became non-finite".to_string());
     }
-    for (w, n) in &warnings {
+    for (w, n) in warnings {
         if w.contains("BADQ") {
             problems.push(format!("{w} x{n}"));
         }
     }
     let mut stab = Stability {
-        seconds: num(&r["simulated_seconds"]).unwrap_or(0.0),
+        seconds: r.simulated_seconds,
         free_objects: 0,
         stable: 0,
         percent: 100.0,
@@ -293,8 +270,9 @@ fn run_rows(
         else {
             continue;
         };
-        let d = num(&b["displacement_m"]).unwrap_or(f64::INFINITY);
-        let a = num(&b["rotation_rad"]).unwrap_or(f64::INFINITY);
+        // A free body without a motion is one whose state went non-finite: it did not stay.
+        let d = b.displacement_m.unwrap_or(f64::INFINITY);
+        let a = b.rotation_rad.unwrap_or(f64::INFINITY);
         stab.max_displacement_m = stab.max_displacement_m.max(d);
         stab.max_rotation_rad = stab.max_rotation_rad.max(a);
         if d < STB_MAX_DISPLACEMENT_M && a < STB_MAX_ROTATION_RAD {
@@ -302,7 +280,7 @@ fn run_rows(
         } else {
             stab.moved.push((o.id.clone(), d, a));
         }
-        if let Some(z) = num(&b["final_pos"][2])
+        if let Some([_, _, z]) = b.final_pos
             && z < floor_z - 1.0
         {
             problems.push(format!("{} fell out of the world (z = {z:.1} m)", o.id));
@@ -316,9 +294,7 @@ fn run_rows(
         format!("{seconds} s stable"),
         format!(
             "{:.1} s in {:.2} s wall, {} contacts at the end",
-            stab.seconds,
-            num(&r["sim_seconds"]).unwrap_or(0.0),
-            r["contacts_at_end"]
+            stab.seconds, r.sim_seconds, r.contacts_at_end
         ),
         problems,
     );

@@ -4,23 +4,23 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-use serde_json::{Value, json};
-
 use super::{
-    CheckRow, ConformanceError, ExpLink, ExpObject, Rows, SceneFacts, aabb_of, alignment, close,
-    num, request_or_row,
+    CheckRow, ConformanceError, ExpLink, ExpObject, Rows, SceneFacts, alignment, call_or_row, close,
 };
 use crate::assets::JointKind;
 use crate::export::paths;
 use crate::export::view::Hold;
 use crate::physics::Bridge;
+use crate::physics::protocol::{
+    UsdBody, UsdCheck, UsdCheckArgs, UsdCheckReply, UsdFinding, UsdJoint,
+};
 
 pub(super) fn check_usd(
     bridge: &mut Bridge,
     dir: &Path,
     exp: &[ExpObject],
     all: &mut Vec<CheckRow>,
-) -> Result<Option<(SceneFacts, Vec<Value>)>, ConformanceError> {
+) -> Result<Option<(SceneFacts, Vec<UsdFinding>)>, ConformanceError> {
     let mut rows = Rows {
         format: "usd",
         rows: all,
@@ -34,28 +34,34 @@ pub(super) fn check_usd(
         );
         return Ok(None);
     }
-    let static_prims: Vec<&str> = exp
+    let static_prims: Vec<String> = exp
         .iter()
         .filter(|o| o.hold == Hold::Static)
-        .flat_map(|o| o.links.iter().map(|l| l.usd_body.as_str()))
+        .flat_map(|o| o.links.iter().map(|l| l.usd_body.clone()))
         .collect();
-    let args = json!({"usd": file, "static_prims": static_prims});
-    let Some(r) = request_or_row(bridge, "usd_check", args, &mut rows, "loads")? else {
+    let args = UsdCheckArgs {
+        usd: file,
+        static_prims,
+    };
+    let Some(r) = call_or_row::<UsdCheck>(bridge, &args, &mut rows, "loads")? else {
         return Ok(None);
     };
     let findings = stage_rows(&mut rows, &r);
-    let bodies = r["bodies"].as_object().cloned().unwrap_or_default();
-    let (objects, mass) = body_rows(&mut rows, exp, &r, &bodies);
-    let colliders = collider_rows(&mut rows, exp, &r, &bodies);
+    let bodies = &r.bodies;
+    let (objects, mass) = body_rows(&mut rows, exp, &r, bodies);
+    let colliders = collider_rows(&mut rows, exp, &r, bodies);
     let movable = joint_rows(&mut rows, exp, &r);
-    articulation_rows(&mut rows, exp, &r, &bodies);
+    articulation_rows(&mut rows, exp, &r, bodies);
     alignment(&mut rows, exp, |l| {
         if let Some(b) = bodies.get(&l.usd_body) {
-            (aabb_of(&b["collision_aabb"]), aabb_of(&b["visual_aabb"]))
+            (b.collision_aabb, b.visual_aabb)
         } else {
             // Static geometry is grouped per link prim (`static_prims`).
-            let s = &r["static"][l.usd_body.as_str()];
-            (aabb_of(&s["collision_aabb"]), aabb_of(&s["visual_aabb"]))
+            let s = r.static_groups.get(&l.usd_body);
+            (
+                s.and_then(|s| s.collision_aabb),
+                s.and_then(|s| s.visual_aabb),
+            )
         }
     });
     Ok(Some((
@@ -70,49 +76,39 @@ pub(super) fn check_usd(
 }
 
 /// Stage metadata, composition errors and validator findings; returns the findings.
-fn stage_rows(rows: &mut Rows<'_>, r: &Value) -> Vec<Value> {
-    let md = &r["metadata"];
+fn stage_rows(rows: &mut Rows<'_>, r: &UsdCheckReply) -> Vec<UsdFinding> {
+    let md = &r.metadata;
     let mut problems = Vec::new();
-    if num(&md["meters_per_unit"]) != Some(1.0) {
-        problems.push(format!("metersPerUnit {}", md["meters_per_unit"]));
+    if md.meters_per_unit != 1.0 {
+        problems.push(format!("metersPerUnit {}", md.meters_per_unit));
     }
-    if num(&md["kilograms_per_unit"]) != Some(1.0) {
-        problems.push(format!("kilogramsPerUnit {}", md["kilograms_per_unit"]));
+    if md.kilograms_per_unit != 1.0 {
+        problems.push(format!("kilogramsPerUnit {}", md.kilograms_per_unit));
     }
-    if md["up_axis"] != "Z" {
-        problems.push(format!("upAxis {}", md["up_axis"]));
+    if md.up_axis != "Z" {
+        problems.push(format!("upAxis {}", md.up_axis));
     }
-    if md["default_prim"] != "/World" {
-        problems.push(format!("defaultPrim {}", md["default_prim"]));
+    if md.default_prim.as_deref() != Some("/World") {
+        problems.push(format!("defaultPrim {:?}", md.default_prim));
     }
-    if r["physics_scenes"].as_u64() != Some(1) {
-        problems.push(format!("{} PhysicsScene prims", r["physics_scenes"]));
+    if r.physics_scenes != 1 {
+        problems.push(format!("{} PhysicsScene prims", r.physics_scenes));
     }
-    for e in r["composition_errors"].as_array().into_iter().flatten() {
+    for e in &r.composition_errors {
         problems.push(format!("composition: {e}"));
     }
     rows.add(
         "stage: metres, kg, Z up, /World, one PhysicsScene",
         "metersPerUnit 1, kilogramsPerUnit 1, upAxis Z".into(),
-        format!(
-            "usd-core {} opened in {:.2} s",
-            r["usd"].as_str().unwrap_or("?"),
-            num(&r["open_seconds"]).unwrap_or(0.0)
-        ),
+        format!("usd-core {} opened in {:.2} s", r.usd, r.open_seconds),
         problems,
     );
 
-    let findings: Vec<Value> = r["findings"].as_array().cloned().unwrap_or_default();
+    let findings = r.findings.clone();
     let errors: Vec<String> = findings
         .iter()
-        .filter(|f| f["severity"].as_str().is_some_and(|s| s.contains("Error")))
-        .map(|f| {
-            format!(
-                "{}: {}",
-                f["validator"].as_str().unwrap_or("?"),
-                f["message"].as_str().unwrap_or("")
-            )
-        })
+        .filter(|f| f.severity.contains("Error"))
+        .map(|f| format!("{}: {}", f.validator, f.message))
         .collect();
     rows.add(
         "UsdValidation (all validators incl. UsdPhysics)",
@@ -129,8 +125,8 @@ fn stage_rows(rows: &mut Rows<'_>, r: &Value) -> Vec<Value> {
 fn body_rows(
     rows: &mut Rows<'_>,
     exp: &[ExpObject],
-    r: &Value,
-    bodies: &serde_json::Map<String, Value>,
+    r: &UsdCheckReply,
+    bodies: &BTreeMap<String, UsdBody>,
 ) -> (usize, f64) {
     let mut problems = Vec::new();
     let mut expected_bodies = BTreeSet::new();
@@ -140,7 +136,7 @@ fn body_rows(
         let mut present = true;
         if o.hold == Hold::Static {
             for l in o.links.iter().filter(|l| l.pieces > 0) {
-                if r["static"][l.usd_body.as_str()].is_null() {
+                if !r.static_groups.contains_key(&l.usd_body) {
                     problems.push(format!("{} has no colliders", l.usd_body));
                     present = false;
                 }
@@ -155,17 +151,17 @@ fn body_rows(
                         present = false;
                     }
                     Some(b) => {
-                        let got = num(&b["mass"]);
+                        let got = b.mass;
                         match got {
                             Some(g) if close(g, l.mass, 1e-6, 1e-9) => {}
                             _ => problems
                                 .push(format!("{}: mass {:?}, scene {}", l.usd_body, got, l.mass)),
                         }
                         m += got.unwrap_or(0.0);
-                        if b["colliders"].as_u64().unwrap_or(0) == 0 {
+                        if b.colliders == 0 {
                             problems.push(format!("{} has no collider", l.usd_body));
                         }
-                        let kinematic = b["kinematic"].as_bool().unwrap_or(false);
+                        let kinematic = b.kinematic;
                         let want = o.hold == Hold::Welded && !o.articulated;
                         if kinematic != want {
                             problems.push(format!("{}: kinematic {kinematic}", l.usd_body));
@@ -200,17 +196,15 @@ fn body_rows(
 fn collider_rows(
     rows: &mut Rows<'_>,
     exp: &[ExpObject],
-    r: &Value,
-    bodies: &serde_json::Map<String, Value>,
+    r: &UsdCheckReply,
+    bodies: &BTreeMap<String, UsdBody>,
 ) -> usize {
     let mut problems = Vec::new();
     let mut colliders = 0;
     for o in exp {
         if o.hold == Hold::Static {
             for l in &o.links {
-                let got = r["static"][l.usd_body.as_str()]["colliders"]
-                    .as_u64()
-                    .unwrap_or(0) as usize;
+                let got = r.static_groups.get(&l.usd_body).map_or(0, |s| s.colliders);
                 colliders += got;
                 if got != l.pieces {
                     problems.push(format!(
@@ -222,10 +216,7 @@ fn collider_rows(
             continue;
         }
         for l in &o.links {
-            let got = bodies
-                .get(&l.usd_body)
-                .and_then(|b| b["colliders"].as_u64())
-                .unwrap_or(0) as usize;
+            let got = bodies.get(&l.usd_body).map_or(0, |b| b.colliders);
             colliders += got;
             if got != l.pieces {
                 problems.push(format!(
@@ -236,16 +227,15 @@ fn collider_rows(
         }
     }
     let pieces: usize = exp.iter().flat_map(|o| &o.links).map(|l| l.pieces).sum();
-    let approx = r["approximations"].as_object().cloned().unwrap_or_default();
-    for (k, n) in &approx {
+    for (k, n) in &r.approximations {
         if k != "convexHull" {
             problems.push(format!("{n} colliders with approximation {k}"));
         }
     }
-    if r["colliders_without_material"].as_u64().unwrap_or(1) != 0 {
+    if r.colliders_without_material != 0 {
         problems.push(format!(
             "{} colliders without a physics material",
-            r["colliders_without_material"]
+            r.colliders_without_material
         ));
     }
     rows.add(
@@ -260,37 +250,30 @@ fn collider_rows(
 
 /// Joints: targets resolve, limits in degrees / metres, world axis, initial position, welds;
 /// returns the number of revolute and prismatic joints.
-fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], r: &Value) -> usize {
-    let joints: BTreeMap<String, &Value> = r["joints"]
-        .as_array()
-        .map(|a| {
-            a.iter()
-                .filter_map(|j| Some((j["path"].as_str()?.to_string(), j)))
-                .collect()
-        })
-        .unwrap_or_default();
+fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], r: &UsdCheckReply) -> usize {
+    let joints: BTreeMap<&str, &UsdJoint> = r.joints.iter().map(|j| (j.path.as_str(), j)).collect();
     let mut problems = Vec::new();
     let mut movable = 0;
     for j in joints.values() {
-        if !j["body0_ok"].as_bool().unwrap_or(false) || !j["body1_ok"].as_bool().unwrap_or(false) {
+        if !j.body0_ok || !j.body1_ok {
             problems.push(format!(
                 "{}: body0 {} / body1 {} do not resolve to rigid bodies",
-                j["path"], j["body0"], j["body1"]
+                j.path, j.body0, j.body1
             ));
         }
-        if num(&j["frame_gap_m"]).is_none_or(|g| g > 1e-5) {
+        if j.frame_gap_m.is_none_or(|g| g > 1e-5) {
             problems.push(format!(
-                "{}: joint frames {} m apart",
-                j["path"], j["frame_gap_m"]
+                "{}: joint frames {:?} m apart",
+                j.path, j.frame_gap_m
             ));
         }
-        if matches!(j["type"].as_str(), Some("revolute" | "prismatic")) {
+        if matches!(j.kind.as_str(), "revolute" | "prismatic") {
             movable += 1;
         }
     }
     for o in exp {
         for e in &o.joints {
-            let Some(g) = joints.get(&e.usd_path) else {
+            let Some(g) = joints.get(e.usd_path.as_str()) else {
                 problems.push(format!("joint {} missing", e.usd_path));
                 continue;
             };
@@ -304,12 +287,13 @@ fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], r: &Value) -> usize {
                 ),
                 JointKind::Prismatic => ("prismatic", e.lower, e.upper, e.q, 1e-6),
             };
-            if g["type"] != want {
-                problems.push(format!("{}: type {}, want {want}", e.usd_path, g["type"]));
+            if g.kind != want {
+                problems.push(format!("{}: type {}, want {want}", e.usd_path, g.kind));
             }
-            let glo = num(&g["lower"]).unwrap_or(f64::NAN);
-            let ghi = num(&g["upper"]).unwrap_or(f64::NAN);
-            if g["limit_enabled"] != true
+            // A missing limit compares as NaN: never close to the scene's.
+            let glo = g.lower.unwrap_or(f64::NAN);
+            let ghi = g.upper.unwrap_or(f64::NAN);
+            if g.limit_enabled != Some(true)
                 || !close(glo, lo, 1e-6, tol)
                 || !close(ghi, hi, 1e-6, tol)
             {
@@ -326,11 +310,7 @@ fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], r: &Value) -> usize {
                     e.usd_path
                 ));
             }
-            let axis = [
-                num(&g["axis_world"][0]).unwrap_or(0.0),
-                num(&g["axis_world"][1]).unwrap_or(0.0),
-                num(&g["axis_world"][2]).unwrap_or(0.0),
-            ];
+            let axis = g.axis_world.unwrap_or([0.0; 3]);
             let dot: f64 = (0..3).map(|k| axis[k] * e.axis_world[k]).sum();
             if dot < 1.0 - 1e-5 {
                 problems.push(format!(
@@ -338,10 +318,8 @@ fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], r: &Value) -> usize {
                     e.usd_path, e.axis_world
                 ));
             }
-            let pos = num(&g["position_measured"]).unwrap_or(f64::NAN);
-            if !close(pos, q, 0.0, tol.max(1e-4))
-                || num(&g["off_axis_rad"]).is_none_or(|a| a > 1e-4)
-            {
+            let pos = g.position_measured.unwrap_or(f64::NAN);
+            if !close(pos, q, 0.0, tol.max(1e-4)) || g.off_axis_rad.is_none_or(|a| a > 1e-4) {
                 problems.push(format!(
                     "{}: bodies sit at joint position {pos}, scene {q}",
                     e.usd_path
@@ -350,8 +328,8 @@ fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], r: &Value) -> usize {
         }
         if o.articulated && o.hold == Hold::Welded {
             let weld = format!("/World/{}/world_weld", o.name);
-            match joints.get(&weld) {
-                Some(g) if g["type"] == "fixed" => {}
+            match joints.get(weld.as_str()) {
+                Some(g) if g.kind == "fixed" => {}
                 _ => problems.push(format!("{weld}: no fixed joint to the world")),
             }
         }
@@ -376,13 +354,10 @@ fn joint_rows(rows: &mut Rows<'_>, exp: &[ExpObject], r: &Value) -> usize {
 fn articulation_rows(
     rows: &mut Rows<'_>,
     exp: &[ExpObject],
-    r: &Value,
-    bodies: &serde_json::Map<String, Value>,
+    r: &UsdCheckReply,
+    bodies: &BTreeMap<String, UsdBody>,
 ) {
-    let arts: Vec<&Value> = r["articulations"]
-        .as_array()
-        .map(|a| a.iter().collect())
-        .unwrap_or_default();
+    let arts = &r.articulations;
     let mut problems = Vec::new();
     let want_arts = exp.iter().filter(|o| o.articulated).count();
     if arts.len() != want_arts {
@@ -397,7 +372,7 @@ fn articulation_rows(
                 .unwrap_or_default(),
             _ => format!("/World/{}", o.name),
         };
-        if !arts.iter().any(|a| a["path"] == root.as_str()) {
+        if !arts.iter().any(|a| a.path == root) {
             problems.push(format!("no articulation root at {root}"));
         }
         // Every pair of links of the object is filtered.
@@ -406,8 +381,7 @@ fn articulation_rows(
                 let filtered = |x: &ExpLink, y: &ExpLink| {
                     bodies
                         .get(&x.usd_body)
-                        .and_then(|v| v["filtered"].as_array())
-                        .is_some_and(|f| f.iter().any(|p| p == y.usd_body.as_str()))
+                        .is_some_and(|v| v.filtered.contains(&y.usd_body))
                 };
                 if !filtered(a, b) && !filtered(b, a) {
                     problems.push(format!("{} / {} may collide", a.usd_body, b.usd_body));
