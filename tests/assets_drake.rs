@@ -5,23 +5,23 @@
 //! articulated model, welded in place with its self-collision turned on, opens each joint to
 //! its limit under a constant force without exceeding it and without its links penetrating.
 
-use std::collections::BTreeMap;
 use std::path::Path;
-
-use serde_json::{Value, json};
 
 use scenesmith::assets::Asset;
 use scenesmith::assets::procedural::{self, AssetRequest, Kind, SupportClass};
 use scenesmith::formats::sdf::asset_files;
 use scenesmith::physics::Bridge;
+use scenesmith::physics::protocol::{
+    AssetModel, AssetsDrop, AssetsDropArgs, AssetsLoad, AssetsLoadArgs, AssetsPush, AssetsPushArgs,
+};
 
-fn write(dir: &Path, asset: &Asset) -> String {
+fn write(dir: &Path, asset: &Asset) -> std::path::PathBuf {
     let d = dir.join(&asset.id);
     std::fs::create_dir_all(&d).unwrap();
     for f in asset_files(asset) {
         std::fs::write(d.join(&f.name), &f.bytes).unwrap();
     }
-    d.join("model.sdf").to_string_lossy().into_owned()
+    d.join("model.sdf")
 }
 
 fn library() -> Vec<(String, Asset)> {
@@ -34,6 +34,15 @@ fn library() -> Vec<(String, Asset)> {
             (c.to_string(), procedural::build(&r).unwrap())
         })
         .collect()
+}
+
+fn model(name: &str, sdf: std::path::PathBuf, footprint: Option<f64>) -> AssetModel {
+    AssetModel {
+        name: name.to_string(),
+        sdf,
+        footprint,
+        efforts: None,
+    }
 }
 
 fn footprint(a: &Asset) -> f64 {
@@ -49,26 +58,27 @@ fn every_category_loads_stands_and_opens_in_drake() {
     let t0 = std::time::Instant::now();
 
     // 1. Everything loads, strictly (Drake warnings are errors), as written.
-    let models: Vec<Value> = assets
+    let models: Vec<AssetModel> = assets
         .iter()
-        .map(|(c, a)| json!({"name": c, "sdf": write(dir.path(), a)}))
+        .map(|(c, a)| model(c, write(dir.path(), a), None))
         .collect();
     let loaded = bridge
-        .request("assets_load", json!({"models": models}))
+        .call::<AssetsLoad>(&AssetsLoadArgs { models })
         .unwrap();
     let mut failures = Vec::new();
     for (c, a) in &assets {
-        let m = &loaded["models"][c];
-        if m["ok"] != true {
-            failures.push(format!("{c}: {}", m["error"]));
+        let m = &loaded.models[c];
+        if !m.ok {
+            failures.push(format!("{c}: {:?}", m.error));
             continue;
         }
-        if m["bodies"].as_u64() != Some(a.links.len() as u64)
-            || m["collision_geometries"].as_u64() != Some(a.collision_pieces() as u64)
-            || (m["mass"].as_f64().unwrap() - a.mass()).abs() > 1e-6 * a.mass()
-            || m["joints"].as_array().map(Vec::len) != Some(a.joints.len())
+        if m.bodies != Some(a.links.len())
+            || m.collision_geometries != Some(a.collision_pieces())
+            || m.mass
+                .is_none_or(|got| (got - a.mass()).abs() > 1e-6 * a.mass())
+            || m.joints.as_ref().map(Vec::len) != Some(a.joints.len())
         {
-            failures.push(format!("{c}: Drake sees {m}"));
+            failures.push(format!("{c}: Drake sees {m:?}"));
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
@@ -84,33 +94,36 @@ fn every_category_loads_stands_and_opens_in_drake() {
                 && p.kind != Kind::ThinCovering
         })
         .collect();
-    let models: Vec<Value> = floor
+    let models: Vec<AssetModel> = floor
         .iter()
-        .map(|(c, a)| json!({"name": c, "sdf": dir.path().join(&a.id).join("model.sdf"), "footprint": footprint(a)}))
+        .map(|(c, a)| {
+            model(
+                c,
+                dir.path().join(&a.id).join("model.sdf"),
+                Some(footprint(a)),
+            )
+        })
         .collect();
     let dropped = bridge
-        .request(
-            "assets_drop",
-            json!({"models": models, "duration": 2.0, "time_step": 2e-3}),
-        )
+        .call::<AssetsDrop>(&AssetsDropArgs {
+            models,
+            duration: 2.0,
+            time_step: 2e-3,
+        })
         .unwrap();
     // Furniture stays exactly upright; a small object may roll or rock a little on a rigid
     // floor under point contact (round fruit, a pen on its side) but never topples or wanders.
     let fallen: Vec<String> = floor
         .iter()
         .filter_map(|(c, _)| {
-            let m = &dropped["models"][c];
+            let m = &dropped.models[c];
             let small = procedural::prior(c).unwrap().support == SupportClass::Surface;
-            let rot = m["rotation_rad"].as_f64().unwrap_or(f64::NAN);
-            let tilt = m["tilt_rad"].as_f64().unwrap_or(f64::NAN);
-            let shifted = m["horizontal_m"].as_f64().unwrap_or(f64::NAN);
             let upright = if small {
-                tilt < 0.5 && shifted < 0.03
+                m.tilt_rad < 0.5 && m.horizontal_m < 0.03
             } else {
-                rot < 0.1
+                m.rotation_rad < 0.1
             };
-            (!upright || m["vertical_m"].as_f64().unwrap_or(-1.0) < -0.05)
-                .then(|| format!("{c}: {m}"))
+            (!upright || m.vertical_m < -0.05).then(|| format!("{c}: {m:?}"))
         })
         .collect();
     eprintln!("drop: {:.1} s", t0.elapsed().as_secs_f64());
@@ -134,28 +147,31 @@ fn every_category_loads_stands_and_opens_in_drake() {
             "{c} has joints but is not marked articulated"
         );
     }
-    let models: Vec<Value> = articulated
+    let models: Vec<AssetModel> = articulated
         .iter()
-        .map(|(c, a)| json!({"name": c, "sdf": dir.path().join(&a.id).join("model.sdf"), "footprint": footprint(a)}))
+        .map(|(c, a)| {
+            model(
+                c,
+                dir.path().join(&a.id).join("model.sdf"),
+                Some(footprint(a)),
+            )
+        })
         .collect();
     let pushed = bridge
-        .request(
-            "assets_push",
-            json!({"models": models, "duration": 1.0, "time_step": 1e-3}),
-        )
+        .call::<AssetsPush>(&AssetsPushArgs {
+            models,
+            duration: 1.0,
+            time_step: 1e-3,
+            force_scale: 2.0,
+        })
         .unwrap();
     eprintln!("push: {:.1} s", t0.elapsed().as_secs_f64());
     let mut problems = Vec::new();
     for (c, a) in &articulated {
-        let m = &pushed["models"][c];
-        let joints: BTreeMap<String, Value> = serde_json::from_value(m["joints"].clone()).unwrap();
-        assert_eq!(joints.len(), a.joints.len(), "{c}");
-        for (name, j) in &joints {
-            let (q, lo, hi) = (
-                j["position"].as_f64().unwrap(),
-                j["lower"].as_f64().unwrap(),
-                j["upper"].as_f64().unwrap(),
-            );
+        let m = &pushed.models[c];
+        assert_eq!(m.joints.len(), a.joints.len(), "{c}");
+        for (name, j) in &m.joints {
+            let (q, lo, hi) = (j.position, j.lower, j.upper);
             let tol = 0.02 * (hi - lo) + 0.005;
             if q > hi + tol || q < lo - tol {
                 problems.push(format!("{c}/{name}: {q:.3} outside [{lo:.3}, {hi:.3}]"));
@@ -163,11 +179,11 @@ fn every_category_loads_stands_and_opens_in_drake() {
                 problems.push(format!("{c}/{name}: stopped at {q:.3} of {hi:.3}"));
             }
         }
-        let depth = m["self_penetration_m"].as_f64().unwrap();
+        let depth = m.self_penetration_m;
         if depth > 1e-3 {
             problems.push(format!(
-                "{c}: links penetrate {depth:.4} m ({})",
-                m["self_penetration_pair"]
+                "{c}: links penetrate {depth:.4} m ({:?})",
+                m.self_penetration_pair
             ));
         }
     }

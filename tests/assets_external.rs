@@ -17,6 +17,9 @@ use scenesmith::assets::procedural::SupportClass;
 use scenesmith::assets::router::{RouteRequest, RouterContext, Stage, Strategy, route};
 use scenesmith::formats::gltf::GltfBuilder;
 use scenesmith::geometry::mesh;
+use scenesmith::physics::protocol::{
+    AssetModel, AssetsLoad, AssetsLoadArgs, AssetsPush, AssetsPushArgs,
+};
 
 /// A block with a nose on its front (-Y here, which glTF export puts at +Z, the glTF front).
 fn nosed_block_glb() -> Vec<u8> {
@@ -446,30 +449,30 @@ fn articulated_library_loads_urdf_and_sdf_and_serves_the_router() {
     }
     let sdf = out_dir.path().join("model.sdf");
     let mut bridge = scenesmith::physics::Bridge::from_env().unwrap();
+    let models = vec![AssetModel {
+        name: "cab".into(),
+        sdf,
+        footprint: None,
+        efforts: None,
+    }];
     let loaded = bridge
-        .request(
-            "assets_load",
-            serde_json::json!({"models": [{"name": "cab", "sdf": sdf}]}),
-        )
+        .call::<AssetsLoad>(&AssetsLoadArgs {
+            models: models.clone(),
+        })
         .unwrap();
-    assert_eq!(loaded["models"]["cab"]["ok"], true, "{loaded}");
+    assert!(loaded.models["cab"].ok, "{loaded:?}");
     let pushed = bridge
-        .request(
-            "assets_push",
-            serde_json::json!({"models": [{"name": "cab", "sdf": sdf}], "duration": 1.0}),
-        )
+        .call::<AssetsPush>(&AssetsPushArgs {
+            models,
+            duration: 1.0,
+            time_step: 1e-3,
+            force_scale: 2.0,
+        })
         .unwrap();
-    let q = pushed["models"]["cab"]["joints"]["hinge"]["position"]
-        .as_f64()
-        .unwrap();
-    assert!((q - 1.5).abs() < 0.05, "{pushed}");
-    assert!(
-        pushed["models"]["cab"]["self_penetration_m"]
-            .as_f64()
-            .unwrap()
-            < 1e-3,
-        "{pushed}"
-    );
+    let cab = &pushed.models["cab"];
+    let q = cab.joints["hinge"].position;
+    assert!((q - 1.5).abs() < 0.05, "{pushed:?}");
+    assert!(cab.self_penetration_m < 1e-3, "{pushed:?}");
 
     let mut ctx = RouterContext::new();
     ctx.library = Some(lib);

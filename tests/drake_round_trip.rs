@@ -7,10 +7,10 @@ use std::collections::BTreeMap;
 
 use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::physics::Bridge;
+use scenesmith::physics::protocol::{Load, LoadedInstance, SceneFiles};
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::ObjectKind;
 use scenesmith::stages::run::Backend;
-use serde_json::json;
 
 #[test]
 fn drake_loads_what_rust_wrote() {
@@ -22,21 +22,17 @@ fn drake_loads_what_rust_wrote() {
 
     let mut bridge = Bridge::from_env().unwrap();
     let loaded = bridge
-        .request(
-            "load",
-            json!({
-                "directives": dir.path().join("scene.dmd.yaml"),
-                "package_xml": dir.path().join("package.xml"),
-            }),
-        )
+        .call::<Load>(&SceneFiles::new(
+            dir.path().join("scene.dmd.yaml"),
+            dir.path().join("package.xml"),
+        ))
         .unwrap();
 
     let scene = &state.scene;
-    let instances: BTreeMap<String, serde_json::Value> = loaded["model_instances"]
-        .as_array()
-        .unwrap()
+    let instances: BTreeMap<&str, &LoadedInstance> = loaded
+        .model_instances
         .iter()
-        .map(|m| (m["name"].as_str().unwrap().to_string(), m.clone()))
+        .map(|m| (m.name.as_str(), m))
         .collect();
     assert_eq!(
         instances.len(),
@@ -49,15 +45,12 @@ fn drake_loads_what_rust_wrote() {
         .iter()
         .map(|o| state.assets[&o.asset].links.len())
         .sum();
-    assert_eq!(
-        loaded["num_bodies"].as_u64().unwrap() as usize,
-        expected_bodies
-    );
+    assert_eq!(loaded.num_bodies, expected_bodies);
 
     let mut free = 0;
     for obj in &scene.objects {
-        let m = &instances[&obj.id];
-        let free_bodies = m["free_bodies"].as_object().unwrap();
+        let m = instances[obj.id.as_str()];
+        let free_bodies = &m.free_bodies;
         if obj.welded {
             assert!(free_bodies.is_empty(), "{} should be welded", obj.id);
             continue;
@@ -67,18 +60,10 @@ fn drake_loads_what_rust_wrote() {
         let pose = &free_bodies["body"];
         let t = obj.world_from_object.translation();
         let q = obj.world_from_object.rotation();
-        let xyz: Vec<f64> = pose["xyz"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|v| v.as_f64().unwrap())
-            .collect();
-        let wxyz: Vec<f64> = pose["wxyz"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|v| v.as_f64().unwrap())
-            .collect();
+        let p = pose.translation();
+        let xyz = [p.x, p.y, p.z];
+        let r = pose.rotation();
+        let wxyz = [r.w, r.i, r.j, r.k];
         for (a, b) in xyz.iter().zip([t.x, t.y, t.z]) {
             assert!(
                 (a - b).abs() < 1e-8,
@@ -95,7 +80,7 @@ fn drake_loads_what_rust_wrote() {
         );
         let asset = &state.assets[&obj.asset];
         assert!(
-            (m["mass"].as_f64().unwrap() - asset.mass()).abs() < 1e-6 * asset.mass(),
+            (m.mass - asset.mass()).abs() < 1e-6 * asset.mass(),
             "{}: mass",
             obj.id
         );
@@ -111,10 +96,10 @@ fn drake_loads_what_rust_wrote() {
         .iter()
         .find(|o| o.category == "cabinet")
         .expect("a cabinet was placed");
-    let joints = instances[&cabinet.id]["joints"].as_array().unwrap();
+    let joints = &instances[cabinet.id.as_str()].joints;
     assert_eq!(joints.len(), 1);
-    assert_eq!(joints[0]["type"], "revolute");
-    let upper = joints[0]["upper"][0].as_f64().unwrap();
+    assert_eq!(joints[0].kind, "revolute");
+    let upper = joints[0].upper[0];
     assert!((upper - 100f64.to_radians()).abs() < 1e-9);
 
     // Architecture is welded (static) and there is exactly one per room.
@@ -135,18 +120,15 @@ fn furniture_welded_variant_loads_with_only_manipulands_free() {
     write_scene_dir(dir.path(), &state).unwrap();
     let mut bridge = Bridge::from_env().unwrap();
     let loaded = bridge
-        .request(
-            "load",
-            json!({
-                "directives": dir.path().join("scene_furniture_welded.dmd.yaml"),
-                "package_xml": dir.path().join("package.xml"),
-            }),
-        )
+        .call::<Load>(&SceneFiles::new(
+            dir.path().join("scene_furniture_welded.dmd.yaml"),
+            dir.path().join("package.xml"),
+        ))
         .unwrap();
-    for m in loaded["model_instances"].as_array().unwrap() {
-        let name = m["name"].as_str().unwrap();
+    for m in &loaded.model_instances {
+        let name = &m.name;
         let obj = state.scene.object(name).unwrap();
-        let is_free = !m["free_bodies"].as_object().unwrap().is_empty();
+        let is_free = !m.free_bodies.is_empty();
         assert_eq!(is_free, obj.kind == ObjectKind::Manipuland, "{name}");
     }
 }

@@ -8,12 +8,11 @@ mod export_common;
 
 use std::collections::BTreeMap;
 
-use export_common::{articulated_state, drake, mujoco, usd, vec3, write_all};
+use export_common::{articulated_state, drake, mujoco, usd, write_all};
 use scenesmith::assets::JointKind;
 use scenesmith::export::conformance::{GateOptions, run_gate, table};
 use scenesmith::export::view::SceneView;
 use scenesmith::physics::Bridge;
-use serde_json::{Value, json};
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
@@ -40,36 +39,19 @@ fn joints_limits_and_signs_agree_across_formats() {
     assert!(report.passed, "{}", table(&report));
 
     let d = drake(&mut bridge, dir.path());
-    let m = mujoco(&mut bridge, dir.path(), 0.0, json!({}));
+    let m = mujoco(&mut bridge, dir.path(), 0.0, &[]);
     let u = usd(&mut bridge, dir.path());
-    let drake_joints: BTreeMap<(String, String), &Value> = d["model_instances"]
-        .as_array()
-        .unwrap()
+    let drake_joints: BTreeMap<(String, String), _> = d
+        .model_instances
         .iter()
         .flat_map(|inst| {
-            inst["joints"].as_array().unwrap().iter().map(move |j| {
-                (
-                    (
-                        inst["name"].as_str().unwrap().to_string(),
-                        j["name"].as_str().unwrap().to_string(),
-                    ),
-                    j,
-                )
-            })
+            inst.joints
+                .iter()
+                .map(move |j| ((inst.name.clone(), j.name.clone()), j))
         })
         .collect();
-    let mj_joints: BTreeMap<&str, &Value> = m["joints"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|j| (j["name"].as_str().unwrap(), j))
-        .collect();
-    let usd_joints: BTreeMap<&str, &Value> = u["joints"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|j| (j["path"].as_str().unwrap(), j))
-        .collect();
+    let mj_joints: BTreeMap<&str, _> = m.joints.iter().map(|j| (j.name.as_str(), j)).collect();
+    let usd_joints: BTreeMap<&str, _> = u.joints.iter().map(|j| (j.path.as_str(), j)).collect();
 
     let view = SceneView::new(&state).unwrap();
     let mut checked = std::collections::BTreeSet::new();
@@ -99,9 +81,9 @@ fn joints_limits_and_signs_agree_across_formats() {
 
             // Drake: SI limits as written.
             let dj = drake_joints[&(o.object.id.clone(), j.name.clone())];
-            assert_eq!(dj["type"], j.kind.as_str());
-            assert_eq!(dj["lower"][0].as_f64().unwrap(), j.lower);
-            assert_eq!(dj["upper"][0].as_f64().unwrap(), j.upper);
+            assert_eq!(dj.kind, j.kind.as_str());
+            assert_eq!(dj.lower[0], j.lower);
+            assert_eq!(dj.upper[0], j.upper);
 
             // MJCF: radians / metres, same sign, same world axis, ref at the initial position.
             let name = format!("{}/{}", o.name, av.joint_names[ji]);
@@ -111,14 +93,11 @@ fn joints_limits_and_signs_agree_across_formats() {
             } else {
                 "slide"
             };
-            assert_eq!(mj["type"], want, "{name}");
-            assert_eq!(mj["range"][0].as_f64().unwrap(), j.lower, "{name}");
-            assert_eq!(mj["range"][1].as_f64().unwrap(), j.upper, "{name}");
-            assert!(
-                dot(vec3(&mj["axis_world"]), axis_world) > 1.0 - 1e-9,
-                "{name}"
-            );
-            assert!((mj["qpos0"].as_f64().unwrap() - q).abs() < 1e-12, "{name}");
+            assert_eq!(mj.kind, want, "{name}");
+            assert_eq!(mj.range[0], j.lower, "{name}");
+            assert_eq!(mj.range[1], j.upper, "{name}");
+            assert!(dot(mj.axis_world, axis_world) > 1.0 - 1e-9, "{name}");
+            assert!((mj.qpos0 - q).abs() < 1e-12, "{name}");
 
             // USD: degrees for revolute, metres for prismatic, same sign and world axis, bodies
             // posed at the initial position.
@@ -128,24 +107,18 @@ fn joints_limits_and_signs_agree_across_formats() {
                 JointKind::Revolute => (j.lower.to_degrees(), j.upper.to_degrees(), q.to_degrees()),
                 JointKind::Prismatic => (j.lower, j.upper, q),
             };
-            assert_eq!(uj["type"], j.kind.as_str(), "{path}");
+            assert_eq!(uj.kind, j.kind.as_str(), "{path}");
+            assert!((uj.lower.unwrap() - lo).abs() < 1e-4, "{path}: {uj:?}");
+            assert!((uj.upper.unwrap() - hi).abs() < 1e-4, "{path}: {uj:?}");
             assert!(
-                (uj["lower"].as_f64().unwrap() - lo).abs() < 1e-4,
-                "{path}: {uj}"
-            );
-            assert!(
-                (uj["upper"].as_f64().unwrap() - hi).abs() < 1e-4,
-                "{path}: {uj}"
-            );
-            assert!(
-                dot(vec3(&uj["axis_world"]), axis_world) > 1.0 - 1e-6,
+                dot(uj.axis_world.unwrap(), axis_world) > 1.0 - 1e-6,
                 "{path}"
             );
             assert!(
-                (uj["position_measured"].as_f64().unwrap() - q_usd).abs() < 1e-3,
-                "{path}: {uj}"
+                (uj.position_measured.unwrap() - q_usd).abs() < 1e-3,
+                "{path}: {uj:?}"
             );
-            assert!(uj["body0_ok"].as_bool().unwrap() && uj["body1_ok"].as_bool().unwrap());
+            assert!(uj.body0_ok && uj.body1_ok);
             checked.insert(format!("{}/{}", o.object.id, j.name));
         }
     }
@@ -165,12 +138,7 @@ fn joints_limits_and_signs_agree_across_formats() {
     }
 
     // Welded articulated objects are fixed to the world; free ones are articulation roots.
-    let roots: Vec<&str> = u["articulations"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|a| a["path"].as_str().unwrap())
-        .collect();
+    let roots: Vec<&str> = u.articulations.iter().map(|a| a.path.as_str()).collect();
     assert!(roots.contains(&"/World/cabinet_welded"), "{roots:?}");
     assert!(roots.contains(&"/World/drawer_box_0"), "{roots:?}");
     assert!(
@@ -196,16 +164,16 @@ fn cabinet_door_opens_under_torque_and_stops_at_its_limits() {
     let hinge = format!("{}/door_hinge", cabinet.id);
     let upper = 100f64.to_radians();
 
-    let opened = mujoco(&mut bridge, dir.path(), 1.5, json!({ &hinge: 3.0 }));
-    let q = opened["probe"][&hinge].as_f64().unwrap();
+    let opened = mujoco(&mut bridge, dir.path(), 1.5, &[(&hinge, 3.0)]);
+    let q = opened.probe[&hinge];
     assert!(
         q > 0.5 && q < upper + 0.05,
         "door at {q} rad after pushing it open"
     );
-    assert!(opened["finite"].as_bool().unwrap());
+    assert!(opened.finite);
 
-    let pushed = mujoco(&mut bridge, dir.path(), 1.0, json!({ &hinge: -3.0 }));
-    let q = pushed["probe"][&hinge].as_f64().unwrap();
+    let pushed = mujoco(&mut bridge, dir.path(), 1.0, &[(&hinge, -3.0)]);
+    let q = pushed.probe[&hinge];
     assert!(
         q > -0.05 && q < 0.01,
         "door at {q} rad after pushing it shut"
@@ -213,10 +181,13 @@ fn cabinet_door_opens_under_torque_and_stops_at_its_limits() {
 
     // The drawer slides out along its -Y axis (negative positions) and stops at -0.25 m; the
     // right door turns about -Z.
-    let probe = json!({"drawer_box_0/drawer_slide": 30.0, "drawer_box_0/door_hinge": 2.0});
-    let r = mujoco(&mut bridge, dir.path(), 1.5, probe);
-    let slide = r["probe"]["drawer_box_0/drawer_slide"].as_f64().unwrap();
-    let door = r["probe"]["drawer_box_0/door_hinge"].as_f64().unwrap();
+    let probe = [
+        ("drawer_box_0/drawer_slide", 30.0),
+        ("drawer_box_0/door_hinge", 2.0),
+    ];
+    let r = mujoco(&mut bridge, dir.path(), 1.5, &probe);
+    let slide = r.probe["drawer_box_0/drawer_slide"];
+    let door = r.probe["drawer_box_0/door_hinge"];
     assert!(
         slide > -0.01 && slide < 0.01,
         "pushing +30 N closes the drawer: {slide}"
@@ -226,9 +197,9 @@ fn cabinet_door_opens_under_torque_and_stops_at_its_limits() {
         &mut bridge,
         dir.path(),
         1.5,
-        json!({"drawer_box_0/drawer_slide": -30.0}),
+        &[("drawer_box_0/drawer_slide", -30.0)],
     );
-    let slide = r["probe"]["drawer_box_0/drawer_slide"].as_f64().unwrap();
+    let slide = r.probe["drawer_box_0/drawer_slide"];
     assert!(
         slide < -0.2 && slide > -0.27,
         "drawer pulled out to {slide}"

@@ -13,7 +13,7 @@ use scenesmith::export::{ExportSet, write_exports};
 use scenesmith::physics::Bridge;
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::{ObjectKind, Pose, SceneObject, Support};
-use serde_json::{Value, json};
+use serde_json::Value;
 
 const PROMPT: &str = "A \"quoted\" kitchen's <b>table</b> & ]]> -- @../../etc/passwd@ \
                       tür 漢字 🙂 back\\slash\nnew line\ttab \u{1} bell, with a cabinet";
@@ -118,8 +118,8 @@ fn hostile_names_give_valid_escaped_contained_files() {
     let mut bridge = Bridge::from_env().unwrap();
     // MuJoCo loads it (XML escaping held) and the prompt comes back as written, minus the
     // control characters XML cannot carry.
-    let m = mujoco(&mut bridge, &dir, 0.2, json!({}));
-    assert!(m["finite"].as_bool().unwrap());
+    let m = mujoco(&mut bridge, &dir, 0.2, &[]);
+    assert!(m.finite);
     let xml = std::fs::read_to_string(dir.join("export/mujoco/scene.xml")).unwrap();
     let root = scenesmith::formats::xml::parse(&xml).unwrap();
     let data = root
@@ -134,30 +134,24 @@ fn hostile_names_give_valid_escaped_contained_files() {
         .map(|c| if c.is_control() { ' ' } else { c })
         .collect();
     assert_eq!(data, plain);
-    assert!(m["joints"].as_array().unwrap().len() >= 3);
+    assert!(m.joints.len() >= 3);
 
     // usd-core opens it, no validator error, and the prompt round-trips exactly.
     let u = usd(&mut bridge, &dir);
-    assert_eq!(u["metadata"]["custom_layer_data"]["prompt"], PROMPT);
-    let errors: Vec<&Value> = u["findings"]
-        .as_array()
-        .unwrap()
+    assert_eq!(u.metadata.custom_layer_data["prompt"], PROMPT);
+    let errors: Vec<_> = u
+        .findings
         .iter()
-        .filter(|f| f["severity"] == "Error")
+        .filter(|f| f.severity == "Error")
         .collect();
     assert!(errors.is_empty(), "{errors:?}");
-    assert!(u["composition_errors"].as_array().unwrap().is_empty());
-    let joints = u["joints"].as_array().unwrap();
+    assert!(u.composition_errors.is_empty());
+    let joints = &u.joints;
+    assert!(joints.iter().all(|j| j.body0_ok && j.body1_ok));
     assert!(
         joints
             .iter()
-            .all(|j| j["body0_ok"] == true && j["body1_ok"] == true)
-    );
-    assert!(
-        joints.iter().any(|j| j["path"]
-            .as_str()
-            .unwrap()
-            .starts_with("/World/weird_obj_t_r/Joints/")),
+            .any(|j| j.path.starts_with("/World/weird_obj_t_r/Joints/")),
         "{joints:?}"
     );
 

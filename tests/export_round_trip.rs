@@ -11,7 +11,6 @@ use scenesmith::formats::scene_dir::load_state;
 use scenesmith::physics::Bridge;
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::ObjectKind;
-use serde_json::json;
 
 fn sum(values: impl Iterator<Item = f64>) -> f64 {
     values.sum()
@@ -48,53 +47,41 @@ fn masses_colliders_and_objects_match_in_every_format() {
     assert!(movable().count() >= 10, "a dense scene");
 
     let mut bridge = Bridge::from_env().unwrap();
-    let m = mujoco(&mut bridge, dir.path(), 0.0, json!({}));
-    let bodies = m["bodies"].as_array().unwrap();
+    let m = mujoco(&mut bridge, dir.path(), 0.0, &[]);
+    let bodies = &m.bodies;
     assert_eq!(bodies.len(), links, "one MuJoCo body per link");
-    let mj_mass = sum(bodies.iter().map(|b| b["mass"].as_f64().unwrap()));
+    let mj_mass = sum(bodies.iter().map(|b| b.mass));
     assert!((mj_mass - mass).abs() < 1e-9 * mass, "{mj_mass} vs {mass}");
-    let mj_coll: u64 = bodies
-        .iter()
-        .map(|b| b["collision_geoms"].as_u64().unwrap())
-        .sum();
-    assert_eq!(mj_coll as usize, pieces);
+    let mj_coll: usize = bodies.iter().map(|b| b.collision_geoms).sum();
+    assert_eq!(mj_coll, pieces);
 
     let u = usd(&mut bridge, dir.path());
-    let ub = u["bodies"].as_object().unwrap();
-    let usd_mass = sum(ub.values().map(|b| b["mass"].as_f64().unwrap()));
+    let ub = &u.bodies;
+    let usd_mass = sum(ub.values().map(|b| b.mass.unwrap()));
     assert!(
         (usd_mass - mass).abs() < 1e-6 * mass,
         "{usd_mass} vs {mass}"
     );
-    let usd_coll: u64 = ub
+    let usd_coll: usize = ub
         .values()
-        .map(|b| b["colliders"].as_u64().unwrap())
-        .chain(
-            u["static"]
-                .as_object()
-                .unwrap()
-                .values()
-                .map(|s| s["colliders"].as_u64().unwrap()),
-        )
+        .map(|b| b.colliders)
+        .chain(u.static_groups.values().map(|s| s.colliders))
         .sum();
-    assert_eq!(usd_coll as usize, pieces);
-    assert_eq!(u["counts"]["MeshShape"].as_u64().unwrap() as usize, pieces);
+    assert_eq!(usd_coll, pieces);
+    assert_eq!(u.counts["MeshShape"], pieces);
     let top_level: std::collections::BTreeSet<&str> =
         ub.keys().map(|k| k.split('/').nth(2).unwrap()).collect();
     assert_eq!(top_level.len(), movable().count());
 
     let d = drake(&mut bridge, dir.path());
-    let instances = d["model_instances"].as_array().unwrap();
+    let instances = &d.model_instances;
     assert_eq!(instances.len(), scene.objects.len());
     let drake_mass = sum(instances
         .iter()
-        .filter(|i| !i["name"].as_str().unwrap().ends_with("_architecture"))
-        .map(|i| i["mass"].as_f64().unwrap()));
+        .filter(|i| !i.name.ends_with("_architecture"))
+        .map(|i| i.mass));
     assert!((drake_mass - mass).abs() < 1e-9 * mass);
-    assert_eq!(
-        d["num_collision_geometries"].as_u64().unwrap() as usize,
-        pieces
-    );
+    assert_eq!(d.num_collision_geometries, pieces);
 
     // The GLB holds every visual triangle once per object.
     let view = SceneView::new(&state).unwrap();

@@ -6,10 +6,10 @@ use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::geometry::polygon;
 use scenesmith::layout::stage::{install_rooms, run_layout};
 use scenesmith::physics::Bridge;
+use scenesmith::physics::protocol::{DropSpheres, DropSpheresArgs, Load, SceneFiles, SphereDrop};
 use scenesmith::scene::Scene;
 use scenesmith::stages::SceneState;
 use scenesmith::stages::run::Backend;
-use serde_json::json;
 
 const HOUSE: &str = "A large family home with a master bedroom, two kids bedrooms, a living \
     room, a kitchen, a dining room, a hallway, and two bathrooms. The kitchen is open to the \
@@ -24,15 +24,15 @@ fn house_architecture_loads_and_floors_catch_spheres() {
     install_rooms(&mut state, &out.rooms).unwrap();
     let dir = tempfile::tempdir().unwrap();
     write_scene_dir(dir.path(), &state).unwrap();
-    let args = json!({
-        "directives": dir.path().join("scene.dmd.yaml"),
-        "package_xml": dir.path().join("package.xml"),
-    });
+    let files = SceneFiles::new(
+        dir.path().join("scene.dmd.yaml"),
+        dir.path().join("package.xml"),
+    );
     let mut bridge = Bridge::from_env().unwrap();
-    let loaded = bridge.request("load", args.clone()).unwrap();
-    let instances = loaded["model_instances"].as_array().unwrap();
+    let loaded = bridge.call::<Load>(&files).unwrap();
+    let instances = &loaded.model_instances;
     assert_eq!(instances.len(), 9, "one architecture model per room");
-    assert!(instances.iter().all(|m| m["welded"] == true));
+    assert!(instances.iter().all(|m| m.welded));
 
     // The open connection between kitchen and dining room has no wall in it.
     let open = out
@@ -47,29 +47,27 @@ fn house_architecture_loads_and_floors_catch_spheres() {
     // A sphere over the middle of every room lands on its floor (top at z = 0) and stays in
     // the room.
     let radius = 0.1;
-    let spheres: Vec<_> = out
+    let spheres: Vec<SphereDrop> = out
         .rooms
         .iter()
         .map(|r| {
             let (lo, hi) = polygon::bounds(&r.floor_polygon);
-            json!({
-                "name": format!("ball_{}", r.id),
-                "xyz": [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0, 1.0],
-                "radius": radius,
-            })
+            SphereDrop {
+                name: format!("ball_{}", r.id),
+                xyz: [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0, 1.0],
+                radius,
+            }
         })
         .collect();
-    let mut drop = args;
-    drop["spheres"] = json!(spheres);
-    drop["duration"] = json!(1.5);
-    let result = bridge.request("drop_spheres", drop).unwrap();
-    for (room, s) in out.rooms.iter().zip(result["spheres"].as_array().unwrap()) {
-        let xyz: Vec<f64> = s["xyz"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|v| v.as_f64().unwrap())
-            .collect();
+    let result = bridge
+        .call::<DropSpheres>(&DropSpheresArgs {
+            scene: files,
+            spheres,
+            duration: 1.5,
+        })
+        .unwrap();
+    for (room, s) in out.rooms.iter().zip(&result.spheres) {
+        let xyz = s.xyz;
         assert!(
             (xyz[2] - radius).abs() < 5e-3,
             "{}: the sphere ended at z = {}",
@@ -81,10 +79,6 @@ fn house_architecture_loads_and_floors_catch_spheres() {
             "{}: the sphere left the room",
             room.id
         );
-        assert!(
-            s["speed"].as_f64().unwrap() < 0.05,
-            "{}: still moving",
-            room.id
-        );
+        assert!(s.speed < 0.05, "{}: still moving", room.id);
     }
 }

@@ -8,6 +8,7 @@ use scenesmith::assets::{Asset, LinkBuilder, material};
 use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::physics::Bridge;
 use scenesmith::physics::collision::{penetrating_pairs, posed_objects};
+use scenesmith::physics::protocol::{Penetrations, PenetrationsArgs, SceneFiles};
 use scenesmith::scene::{ObjectKind, Pose, Room, Scene, Support};
 use scenesmith::stages::SceneState;
 use serde_json::json;
@@ -119,27 +120,19 @@ fn parry_and_drake_agree_on_depth() {
     write_scene_dir(dir.path(), &state).unwrap();
     let mut bridge = Bridge::from_env().unwrap();
     let reply = bridge
-        .request(
-            "penetrations",
-            json!({
-                "directives": dir.path().join("scene.dmd.yaml"),
-                "package_xml": dir.path().join("package.xml"),
-            }),
-        )
-        .unwrap();
-    let drake: BTreeMap<(String, String), f64> = reply["pairs"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|p| {
-            (
-                (
-                    p["a"].as_str().unwrap().to_string(),
-                    p["b"].as_str().unwrap().to_string(),
-                ),
-                p["depth"].as_f64().unwrap(),
-            )
+        .call::<Penetrations>(&PenetrationsArgs {
+            scene: SceneFiles::new(
+                dir.path().join("scene.dmd.yaml"),
+                dir.path().join("package.xml"),
+            ),
+            poses: None,
+            threshold: None,
         })
+        .unwrap();
+    let drake: BTreeMap<(String, String), f64> = reply
+        .pairs
+        .into_iter()
+        .map(|p| ((p.a, p.b), p.depth))
         .collect();
     assert_eq!(drake.len(), rust.len(), "drake {drake:?} vs rust {rust:?}");
     for (pair, d_rust) in &rust {

@@ -9,10 +9,14 @@ use scenesmith::assets::{Asset, Joint, JointKind, LinkBuilder, material};
 use scenesmith::export::{ExportSet, write_exports};
 use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::physics::Bridge;
+use scenesmith::physics::protocol::{
+    Load, LoadReply, MujocoCheck, MujocoCheckArgs, MujocoCheckReply, SceneFiles, UsdCheck,
+    UsdCheckArgs, UsdCheckReply,
+};
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::{ObjectKind, Pose, SceneObject, Support};
 use scenesmith::stages::SceneState;
-use serde_json::{Value, json};
+use serde_json::json;
 
 /// A test asset with a drawer sliding along -Y (limits [-0.25, 0]: opening is negative) and a
 /// right-hinged door turning about -Z (limits [0, 1.5]).
@@ -123,43 +127,39 @@ pub fn write_all(dir: &Path, state: &SceneState) {
     write_exports(dir, state, &ExportSet::all()).unwrap();
 }
 
-/// `mujoco_check` on the scene's MJCF.
-pub fn mujoco(bridge: &mut Bridge, dir: &Path, seconds: f64, probe: Value) -> Value {
+/// `mujoco_check` on the scene's MJCF, pushing each joint in `probe` with a constant force.
+pub fn mujoco(
+    bridge: &mut Bridge,
+    dir: &Path,
+    seconds: f64,
+    probe: &[(&str, f64)],
+) -> MujocoCheckReply {
+    let probe_joints = probe.iter().map(|(j, f)| (j.to_string(), *f)).collect();
     bridge
-        .request(
-            "mujoco_check",
-            json!({"xml": dir.join("export/mujoco/scene.xml"), "seconds": seconds,
-                   "probe_joints": probe}),
-        )
+        .call::<MujocoCheck>(&MujocoCheckArgs {
+            xml: dir.join("export/mujoco/scene.xml"),
+            seconds,
+            probe_joints,
+        })
         .unwrap()
 }
 
 /// `usd_check` on the scene's USD stage.
-pub fn usd(bridge: &mut Bridge, dir: &Path) -> Value {
+pub fn usd(bridge: &mut Bridge, dir: &Path) -> UsdCheckReply {
     bridge
-        .request(
-            "usd_check",
-            json!({"usd": dir.join("export/usd/scene.usda")}),
-        )
+        .call::<UsdCheck>(&UsdCheckArgs {
+            usd: dir.join("export/usd/scene.usda"),
+            static_prims: Vec::new(),
+        })
         .unwrap()
 }
 
 /// Drake's `load` of the scene directives.
-pub fn drake(bridge: &mut Bridge, dir: &Path) -> Value {
+pub fn drake(bridge: &mut Bridge, dir: &Path) -> LoadReply {
     bridge
-        .request(
-            "load",
-            json!({"directives": dir.join("scene.dmd.yaml"),
-                   "package_xml": dir.join("package.xml")}),
-        )
+        .call::<Load>(&SceneFiles::new(
+            dir.join("scene.dmd.yaml"),
+            dir.join("package.xml"),
+        ))
         .unwrap()
-}
-
-/// A JSON array of three numbers.
-pub fn vec3(v: &Value) -> [f64; 3] {
-    [
-        v[0].as_f64().unwrap(),
-        v[1].as_f64().unwrap(),
-        v[2].as_f64().unwrap(),
-    ]
 }
