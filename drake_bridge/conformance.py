@@ -6,7 +6,6 @@ MuJoCo and usd-core are imported on first use, so the bridge starts without them
 """
 
 import math
-import os
 import time
 
 import numpy as np

@@ -2,7 +2,7 @@
 
 import pytest
 
-from drake_bridge import asset_checks, ops
+from drake_bridge import ops
 from drake_bridge.errors import BadRequest, FileMissing
 
 INERTIA = "<inertia><ixx>{i}</ixx><ixy>0</ixy><ixz>0</ixz><iyy>{i}</iyy><iyz>0</iyz><izz>{i}</izz></inertia>"

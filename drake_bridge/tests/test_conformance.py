@@ -2,7 +2,7 @@
 
 import pytest
 
-from drake_bridge import conformance, ops
+from drake_bridge import ops
 from drake_bridge.errors import BadRequest, FileMissing, ModelError
 
 CUBE_OBJ = """v -0.05 -0.05 -0.05

@@ -1,7 +1,6 @@
 """The JSON-lines protocol, spoken by a real bridge subprocess."""
 
 import json
-import os
 import subprocess
 import sys
 
