@@ -26,10 +26,10 @@ use crate::physics::postprocess::{self, PostProcessOptions, PostProcessReport};
 use crate::physics::{Bridge, BridgeError, BridgePool, PhysicsError};
 
 use crate::scene::{ObjectKind, Scene, sanitize_name};
-use crate::stages::SceneState;
 use crate::stages::checkpoint::{CheckpointStore, DirCheckpoints, NoCheckpoints};
 use crate::stages::plan::plan_room;
 use crate::stages::run::{Backend, StageSummary, furnish_room_resumable};
+use crate::state::SceneState;
 use crate::util::fsx::{FsError, StagingDir};
 
 /// The LLM transcript in a scene directory.

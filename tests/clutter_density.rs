@@ -9,7 +9,7 @@ use scenesmith::stages::run::Backend;
 
 const BEDROOM: &str = "A bedroom with a bed, two nightstands, and a wardrobe.";
 
-fn small_objects(prompt: &str, name: &str) -> (scenesmith::stages::SceneState, usize) {
+fn small_objects(prompt: &str, name: &str) -> (scenesmith::state::SceneState, usize) {
     let (state, _) = build_scene(prompt, 1, name, &Backend::Builtin).expect("the scene builds");
     let n = state
         .scene

@@ -7,8 +7,8 @@ use scenesmith::geometry::polygon;
 use scenesmith::layout::stage::{install_rooms, run_layout};
 use scenesmith::physics::Bridge;
 use scenesmith::scene::Scene;
-use scenesmith::stages::SceneState;
 use scenesmith::stages::run::Backend;
+use scenesmith::state::SceneState;
 use serde_json::json;
 
 const HOUSE: &str = "A large family home with a master bedroom, two kids bedrooms, a living \

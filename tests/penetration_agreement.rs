@@ -9,7 +9,7 @@ use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::physics::Bridge;
 use scenesmith::physics::collision::{penetrating_pairs, posed_objects};
 use scenesmith::scene::{ObjectKind, Pose, Room, Scene, Support};
-use scenesmith::stages::SceneState;
+use scenesmith::state::SceneState;
 use serde_json::json;
 
 fn block(id: &str, size: [f64; 3], cylinder: bool) -> Asset {

@@ -34,8 +34,8 @@ use scenesmith::physics::settle::{
 };
 use scenesmith::pipeline::{GenerateOptions, build_scene, generate};
 use scenesmith::scene::{ObjectKind, Pose};
-use scenesmith::stages::SceneState;
 use scenesmith::stages::run::Backend;
+use scenesmith::state::SceneState;
 
 struct Args {
     parts: Vec<String>,

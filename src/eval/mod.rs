@@ -33,7 +33,7 @@ use crate::physics::settle::{ContactModel, ContactOptions};
 use crate::physics::{BridgePool, PhysicsError};
 use crate::prompt;
 use crate::scene::ObjectKind;
-use crate::stages::SceneState;
+use crate::state::SceneState;
 use crate::util::fsx::write_atomic;
 
 pub use coverage::{PlanCoverage, PlannedRequirement};

@@ -482,7 +482,7 @@ pub fn files(view: &SceneView<'_>) -> Result<Vec<ExportFile>, ExportError> {
 mod tests {
     use super::*;
     use crate::pipeline::build_scene;
-    use crate::stages::SceneState;
+    use crate::state::SceneState;
 
     fn kitchen() -> SceneState {
         build_scene(

@@ -7,7 +7,7 @@ use super::FormatError;
 use super::directives::{Variant, directives_yaml, package_xml};
 use super::sdf::asset_files;
 use crate::scene::Scene;
-use crate::stages::SceneState;
+use crate::state::SceneState;
 use crate::util::fsx::{io_err, write_atomic};
 
 /// Names of the files at the top of a scene directory.

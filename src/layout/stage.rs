@@ -17,8 +17,8 @@ use crate::geometry::GeometryError;
 use crate::prompt::Reading;
 use crate::render::RenderError;
 use crate::scene::{ObjectKind, Pose, Room, SceneObject, Support};
-use crate::stages::SceneState;
 use crate::stages::run::{Backend, StageSummary};
+use crate::state::SceneState;
 
 /// What the layout stage produced.
 #[derive(Debug, Clone)]

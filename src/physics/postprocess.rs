@@ -33,7 +33,8 @@ use super::removal::{RemovalRules, furniture_verdict, manipuland_verdict};
 use super::settle::{SettleOptions, SettleResult, parse_result, request_args};
 use super::workspace::{Role, Workspace};
 use crate::scene::{ObjectKind, PlacedAgain, Pose, Scene, SceneObject, Support};
-use crate::stages::{SceneState, StageState};
+use crate::stages::StageState;
+use crate::state::SceneState;
 
 /// Options of [`post_process`].
 #[derive(Debug, Clone)]

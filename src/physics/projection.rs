@@ -40,7 +40,7 @@ use super::as_written::posed_objects;
 use super::collision::{PosedPiece, exit_direction};
 use crate::geometry::polygon;
 use crate::scene::Pose;
-use crate::stages::SceneState;
+use crate::state::SceneState;
 
 /// Which free objects may move.
 #[derive(Debug, Clone, PartialEq, Default)]

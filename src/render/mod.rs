@@ -30,7 +30,7 @@ pub use image::Image;
 pub use scene::RenderScene;
 pub use views::{asset_preview, contact_sheet, write_standard_views, write_views};
 
-use crate::stages::SceneState;
+use crate::state::SceneState;
 
 /// What can go wrong rendering.
 #[derive(Debug, thiserror::Error)]

@@ -13,11 +13,12 @@ use serde::{Deserialize, Serialize};
 
 use super::common::{self, ObjectInfo, object_info};
 use super::room::RoomFrame;
-use super::{RoutedAsset, SceneState, StageState};
+use super::{RoutedAsset, StageState};
 use crate::agents::{Access, CategorySpec, ToolError, Toolbox};
 use crate::assets::Asset;
 use crate::physics::collision::{object_penetration, posed_object};
 use crate::scene::{AssetRecord, ObjectKind, Pose, SceneObject, Support, SurfaceRecord};
+use crate::state::SceneState;
 
 /// Gap kept between neighbouring small objects, metres.
 const GAP: f64 = 0.008;

@@ -7,8 +7,8 @@ use std::sync::Arc;
 use super::checkpoint::{CheckpointStore, NoCheckpoints};
 use super::plan::{Arrangement, RoomPlan, SurfaceWant, Want};
 use super::{
-    SceneState, StageKind, StageState, ceiling, furniture, furniture_builtin, manipuland,
-    manipuland_builtin, wall,
+    StageKind, StageState, ceiling, furniture, furniture_builtin, manipuland, manipuland_builtin,
+    wall,
 };
 use crate::agents::llm::{LlmConfig, LlmCritic, LlmDesigner, LlmOrchestrator, SharedTransport};
 use crate::agents::{
@@ -16,6 +16,7 @@ use crate::agents::{
     PlacementStyle, RunLog, StageConfig, StageSpec, Toolbox, run_stage,
 };
 use crate::scene::ObjectKind;
+use crate::state::SceneState;
 
 /// Which agents run the stages.
 #[derive(Clone)]

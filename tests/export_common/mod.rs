@@ -11,7 +11,7 @@ use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::physics::Bridge;
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::{ObjectKind, Pose, SceneObject, Support};
-use scenesmith::stages::SceneState;
+use scenesmith::state::SceneState;
 use serde_json::{Value, json};
 
 /// A test asset with a drawer sliding along -Y (limits [-0.25, 0]: opening is negative) and a
