@@ -647,7 +647,7 @@ fn run_layout(
     let out = layout::stage::run_layout(
         prompt,
         seed,
-        &scenesmith::stages::run::Backend::Builtin,
+        &scenesmith::agents::Backend::Builtin,
         &mut log,
     )?;
     if let Some(path) = &png {

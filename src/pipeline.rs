@@ -14,7 +14,7 @@ use serde_json::json;
 use crate::agents::llm::{
     HttpTransport, LlmConfig, LlmError, ReplayTransport, SharedTransport, Transport,
 };
-use crate::agents::{AgentError, RunLog};
+use crate::agents::{AgentError, Backend, RunLog, StageSummary};
 use crate::assets::AssetError;
 use crate::eval::{self, EvalError, EvalOptions, Metrics};
 use crate::formats::FormatError;
@@ -28,7 +28,7 @@ use crate::physics::{Bridge, BridgeError, BridgePool, CheckSummary, PhysicsError
 use crate::scene::{ObjectKind, Scene, sanitize_name};
 use crate::stages::checkpoint::{CheckpointStore, DirCheckpoints, NoCheckpoints};
 use crate::stages::plan::plan_room;
-use crate::stages::run::{Backend, StageSummary, furnish_room_resumable};
+use crate::stages::run::furnish_room_resumable;
 use crate::state::SceneState;
 use crate::util::fsx::{FsError, StagingDir};
 

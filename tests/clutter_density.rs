@@ -2,10 +2,10 @@
 //! still has its drawers and wardrobe filled, both nightstands carry things, what is put away
 //! rests on enclosed surfaces only, and a minimalist room has less.
 
+use scenesmith::agents::Backend;
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::{ObjectKind, Support};
 use scenesmith::stages::clutter::is_enclosed;
-use scenesmith::stages::run::Backend;
 
 const BEDROOM: &str = "A bedroom with a bed, two nightstands, and a wardrobe.";
 

@@ -5,11 +5,11 @@ mod common;
 
 use std::collections::BTreeMap;
 
+use scenesmith::agents::Backend;
 use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::physics::Bridge;
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::ObjectKind;
-use scenesmith::stages::run::Backend;
 use serde_json::json;
 
 #[test]

@@ -1,13 +1,13 @@
 //! The architecture of a generated house in Drake: it loads (one static model per room, every
 //! shared wall built once), and a sphere dropped over each room lands on that room's floor.
 
+use scenesmith::agents::Backend;
 use scenesmith::agents::RunLog;
 use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::geometry::polygon;
 use scenesmith::layout::stage::{install_rooms, run_layout};
 use scenesmith::physics::Bridge;
 use scenesmith::scene::Scene;
-use scenesmith::stages::run::Backend;
 use scenesmith::state::SceneState;
 use serde_json::json;
 

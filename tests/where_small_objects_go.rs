@@ -3,9 +3,9 @@
 //! top, not a row; plates and bowls in short stacks), in bins on the floor (floor bins, each
 //! with its share), in the sink (its basin, not the shelf behind its doors).
 
+use scenesmith::agents::Backend;
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::Support;
-use scenesmith::stages::run::Backend;
 
 #[test]
 fn a_pile_of_blocks_on_the_floor_is_a_heap_on_a_rug() {

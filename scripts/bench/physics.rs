@@ -24,6 +24,7 @@ use rand::{RngExt, SeedableRng};
 use serde_json::json;
 
 use physics_util::{Shape, block, floor, max_penetration, overlapping_heap, place, room};
+use scenesmith::agents::Backend;
 use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::physics::BridgePool;
 use scenesmith::physics::drake_projection::{DrakeProjectionOptions, project_drake};
@@ -34,7 +35,6 @@ use scenesmith::physics::settle::{
 };
 use scenesmith::pipeline::{GenerateOptions, build_scene, generate};
 use scenesmith::scene::{ObjectKind, Pose};
-use scenesmith::stages::run::Backend;
 use scenesmith::state::SceneState;
 
 struct Args {

@@ -489,7 +489,7 @@ mod tests {
             "a kitchen with a table, two chairs, a cabinet, plates and mugs",
             2,
             "mjcf_unit",
-            &crate::stages::run::Backend::Builtin,
+            &crate::agents::Backend::Builtin,
         )
         .unwrap()
         .0

@@ -558,7 +558,7 @@ mod tests {
             "a bedroom with a cabinet and books",
             4,
             "usd_unit",
-            &crate::stages::run::Backend::Builtin,
+            &crate::agents::Backend::Builtin,
         )
         .unwrap();
         // Weld the cabinet with its door half open.

@@ -112,8 +112,8 @@ pub fn read_scene(dir: &Path) -> Result<Scene, FormatError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::agents::Backend;
     use crate::pipeline::build_scene;
-    use crate::stages::run::Backend;
 
     #[test]
     fn written_scene_loads_back_with_the_same_assets() {

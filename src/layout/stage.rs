@@ -10,13 +10,12 @@ use super::tools;
 use super::validate::Validation;
 use crate::agents::llm::{LlmCritic, LlmDesigner, LlmOrchestrator};
 use crate::agents::{
-    AgentError, BuiltinOrchestrator, Critic, Designer, Orchestrator, RunLog, StageConfig,
-    StageSpec, run_stage,
+    AgentError, Backend, BuiltinOrchestrator, Critic, Designer, Orchestrator, RunLog, StageConfig,
+    StageSpec, StageSummary, run_stage,
 };
 use crate::geometry::GeometryError;
 use crate::prompt::Reading;
 use crate::scene::{ObjectKind, Pose, Room, SceneObject, Support};
-use crate::stages::run::{Backend, StageSummary};
 use crate::state::SceneState;
 
 /// What the layout stage produced.

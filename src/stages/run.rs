@@ -10,54 +10,13 @@ use super::{
     StageKind, StageState, ceiling, furniture, furniture_builtin, manipuland, manipuland_builtin,
     wall,
 };
-use crate::agents::llm::{LlmConfig, LlmCritic, LlmDesigner, LlmOrchestrator, SharedTransport};
+use crate::agents::llm::{LlmCritic, LlmDesigner, LlmOrchestrator};
 use crate::agents::{
-    AgentError, BuiltinOrchestrator, CategorySpec, Critic, Critique, Designer, Orchestrator,
-    PlacementStyle, RunLog, StageConfig, StageSpec, Toolbox, run_stage,
+    AgentError, Backend, BuiltinOrchestrator, CategorySpec, Critic, Designer, Orchestrator,
+    PlacementStyle, RunLog, StageConfig, StageSpec, StageSummary, Toolbox, run_stage,
 };
 use crate::scene::ObjectKind;
 use crate::state::SceneState;
-
-/// Which agents run the stages.
-#[derive(Clone)]
-pub enum Backend {
-    /// The offline rule-based designers and measurement-based critics.
-    Builtin,
-    /// An OpenAI-compatible chat model for every role.
-    Llm {
-        /// Shared transport (HTTP or replay).
-        transport: SharedTransport,
-        /// Model settings.
-        config: LlmConfig,
-    },
-}
-
-impl Backend {
-    /// Name recorded in `scene.json`.
-    pub fn name(&self) -> String {
-        match self {
-            Backend::Builtin => "builtin".into(),
-            Backend::Llm { config, .. } => format!("llm:{}", config.model),
-        }
-    }
-}
-
-/// What a stage kept, for the run summary.
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct StageSummary {
-    /// Stage name.
-    pub stage: String,
-    /// Room.
-    pub room: String,
-    /// Supporting entity (manipuland stage).
-    pub entity: Option<String>,
-    /// Scores of the kept checkpoint.
-    pub critique: Option<Critique>,
-    /// Critique rounds run.
-    pub rounds: usize,
-    /// Wall time of the stage (agents and tools), seconds; not written to `scene.json`.
-    pub seconds: f64,
-}
 
 fn stage_config(kind: StageKind) -> StageConfig {
     match kind {

@@ -78,7 +78,7 @@ pub fn articulated_state() -> SceneState {
         "A bedroom with a cabinet",
         3,
         "export_joints",
-        &scenesmith::stages::run::Backend::Builtin,
+        &scenesmith::agents::Backend::Builtin,
     )
     .unwrap();
     let cabinet = state
