@@ -371,7 +371,7 @@ pub fn build_scene_with(
                 .scene
                 .objects
                 .iter()
-                .filter(|o| crate::stages::StageState::is(&state.scene, &noun, o))
+                .filter(|o| crate::assets::router::naming::object_is(&state.scene, &noun, o))
                 .count() as u32;
             (noun, wanted, present)
         })

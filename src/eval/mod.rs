@@ -277,7 +277,7 @@ fn removed(state: &SceneState, coverage: &PlanCoverage) -> Removed {
         let short = coverage.requirements.iter().find(|q| {
             q.kind != "none"
                 && q.present < q.required
-                && crate::stages::StageState::names(&q.category, &r.category)
+                && crate::assets::router::naming::names(&q.category, &r.category)
         });
         if let Some(q) = short {
             *lost.entry(q.category.clone()).or_default() += 1;

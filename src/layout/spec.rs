@@ -14,7 +14,6 @@ use super::knowledge::{self, Role, knowledge};
 use crate::assets::procedural;
 use crate::prompt;
 use crate::scene::IdAllocator;
-use crate::stages::StageState;
 use crate::stages::plan::{Arrangement, RoomPlan, plan_room};
 
 /// Default wall height, metres.
@@ -144,7 +143,7 @@ pub struct ContentNeeds {
 }
 
 fn typical(noun: &str) -> Option<[f64; 3]> {
-    let cat = StageState::category_of(noun).unwrap_or(noun);
+    let cat = crate::assets::router::naming::category_of(noun).unwrap_or(noun);
     procedural::prior(cat).map(|p| p.typical)
 }
 

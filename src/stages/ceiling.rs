@@ -247,7 +247,9 @@ impl Designer<StageState> for BuiltinCeilingDesigner {
             if let Arrangement::Above { target } = &want.arrangement {
                 let ids: Vec<String> = state
                     .room_objects()
-                    .filter(|o| StageState::is(&state.scene.scene, target, o))
+                    .filter(|o| {
+                        crate::assets::router::naming::object_is(&state.scene.scene, target, o)
+                    })
                     .map(|o| o.id.clone())
                     .collect();
                 for t in ids {

@@ -10,7 +10,6 @@
 //! counts, and a parent the prompt filled itself gets no defaults (the plan already left it
 //! out).
 
-use super::StageState;
 use super::plan::{Arrangement, Want, clutter_factor, one_per_parent, split_counts};
 use crate::prompt::{self, Density};
 use crate::scene::{AssetRecord, SurfaceRecord};
@@ -73,7 +72,7 @@ pub fn clutter_area(rec: &AssetRecord, density: Option<Density>) -> (f64, f64) {
 
 /// Typical footprint of a thing, m² (upright, as it is placed first).
 pub(crate) fn footprint(noun: &str) -> f64 {
-    StageState::category_of(noun)
+    crate::assets::router::naming::category_of(noun)
         .and_then(crate::assets::procedural::prior)
         .map_or(UNKNOWN_FOOTPRINT, |p| {
             (p.typical[0] * p.typical[1]).max(1e-4)

@@ -933,7 +933,7 @@ fn place_inside(state: &mut StageState, a: FillArgs) -> Result<PlaceResult, Tool
     // stuffed animals"), the smallest plausible size of the same object, if that holds more.
     let mut trial = state.clone();
     let (mut routed, mut ids) = fill(&mut trial, None)?;
-    let smallest = StageState::category_of(&a.description)
+    let smallest = crate::assets::router::naming::category_of(&a.description)
         .and_then(crate::assets::procedural::prior)
         .map(|p| p.min);
     if (ids.len() as u32) < a.count

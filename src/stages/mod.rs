@@ -181,56 +181,12 @@ pub struct StageState {
 }
 
 impl StageState {
-    /// The category a free-text description names: the longest phrase (up to three words)
-    /// that resolves, preferring later words (the head noun comes last in English).
-    pub fn category_of(description: &str) -> Option<&'static str> {
-        router::parse::main_categories(description).first().copied()
-    }
-
-    /// True when an object of `category` is what `noun` asks for: a category the router can
-    /// build for it (at any stage), or the generic stand-in named after an unknown noun.
-    pub fn names(noun: &str, category: &str) -> bool {
-        let sanitized = crate::scene::sanitize_name(noun);
-        if category == noun || category == sanitized {
-            return true;
-        }
-        // A prompt's name keeps the noun's modifiers and ends with the noun
-        // ("spattered_radio" for a "paint-spattered radio" the plan calls a radio).
-        if procedural::prior(category).is_none()
-            && !sanitized.is_empty()
-            && category
-                .strip_suffix(sanitized.as_str())
-                .is_some_and(|rest| rest.ends_with('_'))
-        {
-            return true;
-        }
-        let main = router::parse::main_categories(noun);
-        // Objects carry the prompt's name ("manicure_table"): what the router builds for the
-        // name is what it is.
-        let built_as = router::parse::main_categories(&category.replace('_', " "));
-        main.contains(&category)
-            || built_as.first().is_some_and(|b| main.contains(b))
-            || procedural::prior(category).is_some_and(|p| {
-                main.iter()
-                    .any(|c| procedural::support_sibling(c, p.support) == Some(category))
-            })
-            || router::parse::phrase(noun)
-                .unknown_noun
-                .is_some_and(|u| crate::scene::sanitize_name(&u) == category)
-    }
-
-    /// True when `o` in `scene` is what `noun` asks for, by its name (the prompt's,
-    /// "manicure_table") or by the library category its asset is built as (`table`).
-    pub fn is(scene: &crate::scene::Scene, noun: &str, o: &SceneObject) -> bool {
-        StageState::names(noun, &o.category) || StageState::names(noun, scene.built_as(o))
-    }
-
     /// True when `o` counts for the plan item `want`: its noun names it, or it is what the
     /// router builds for the item's description ("wooden play blocks" are the library's
     /// wooden blocks, a variant of the toy block the noun names).
     pub fn is_wanted(scene: &crate::scene::Scene, want: &plan::Want, o: &SceneObject) -> bool {
-        StageState::category_of(&want.description) == Some(scene.built_as(o))
-            || StageState::is(scene, &want.noun, o)
+        crate::assets::router::naming::category_of(&want.description) == Some(scene.built_as(o))
+            || crate::assets::router::naming::object_is(scene, &want.noun, o)
     }
 
     /// Builds (or reuses) the asset for `description` through the asset router (attributes

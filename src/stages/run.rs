@@ -283,7 +283,7 @@ fn split_plans(
         let mut hosts: Vec<&(String, String)> = furniture
             .iter()
             .filter(|(_, cat)| {
-                group.parent == "any" || super::StageState::names(&group.parent, cat)
+                group.parent == "any" || crate::assets::router::naming::names(&group.parent, cat)
             })
             .collect();
         let own_kind = !hosts.is_empty();

@@ -354,7 +354,10 @@ pub fn toolbox() -> Toolbox<StageState> {
 fn targets(state: &StageState, noun: &str) -> Vec<String> {
     state
         .room_objects()
-        .filter(|o| StageState::is(&state.scene.scene, noun, o) && o.kind == ObjectKind::Furniture)
+        .filter(|o| {
+            crate::assets::router::naming::object_is(&state.scene.scene, noun, o)
+                && o.kind == ObjectKind::Furniture
+        })
         .map(|o| o.id.clone())
         .collect()
 }
