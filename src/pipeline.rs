@@ -25,9 +25,9 @@ use crate::physics::collision;
 use crate::physics::postprocess::{self, PostProcessOptions, PostProcessReport};
 use crate::physics::{Bridge, BridgeError, BridgePool, CheckSummary, PhysicsError, check_dir};
 
+use crate::plan::plan_room;
 use crate::scene::{ObjectKind, Scene, sanitize_name};
 use crate::stages::checkpoint::{CheckpointStore, DirCheckpoints, NoCheckpoints};
-use crate::stages::plan::plan_room;
 use crate::stages::run::furnish_room_resumable;
 use crate::state::SceneState;
 use crate::util::fsx::{FsError, StagingDir};

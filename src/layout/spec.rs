@@ -12,9 +12,9 @@ use serde::{Deserialize, Serialize};
 use super::brief::HouseBrief;
 use super::knowledge::{self, Role, knowledge};
 use crate::assets::procedural;
+use crate::plan::{Arrangement, RoomPlan, plan_room};
 use crate::prompt;
 use crate::scene::IdAllocator;
-use crate::stages::plan::{Arrangement, RoomPlan, plan_room};
 
 /// Default wall height, metres.
 pub const WALL_HEIGHT: f64 = 2.7;

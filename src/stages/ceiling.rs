@@ -8,13 +8,13 @@ use serde_json::json;
 
 use super::common::{self, ObjectInfo, floor_footprints, object_info};
 use super::placement::Footprint;
-use super::plan::Arrangement;
 use super::room::RoomFrame;
 use super::{RoutedAsset, StageState};
 use crate::agents::{
     Access, AgentCx, AgentError, CategorySpec, Critic, Critique, DesignRequest, Designer, Issue,
     Role, Score, ToolError, Toolbox,
 };
+use crate::plan::Arrangement;
 use crate::scene::{ObjectKind, Pose, Support};
 
 /// Clear height kept under ceiling objects over walkable floor, metres.

@@ -8,10 +8,10 @@
 use serde_json::{Value, json};
 
 use super::StageState;
-use super::plan::Arrangement;
 use crate::agents::{
     AgentCx, AgentError, Critic, Critique, DesignRequest, Designer, Issue, Role, Score,
 };
+use crate::plan::Arrangement;
 
 /// Whether a piece of this category is a seat that faces a table (`chair`, `dining_chair`,
 /// `bar_stool`).

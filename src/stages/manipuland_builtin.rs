@@ -4,10 +4,10 @@ use serde_json::{Value, json};
 
 use super::StageState;
 use super::manipuland::{items_on, surfaces};
-use super::plan::{Arrangement, Want};
 use crate::agents::{
     AgentCx, AgentError, Critic, Critique, DesignRequest, Designer, Issue, Role, Score,
 };
+use crate::plan::{Arrangement, Want};
 use crate::scene::ObjectKind;
 
 /// The built-in manipuland designer.

@@ -12,7 +12,6 @@ pub mod furniture_builtin;
 pub mod manipuland;
 pub mod manipuland_builtin;
 pub mod placement;
-pub mod plan;
 pub mod room;
 pub mod run;
 pub mod wall;
@@ -24,6 +23,7 @@ use serde::{Deserialize, Serialize};
 use crate::agents::ToolError;
 use crate::assets::procedural::{self, SupportClass};
 use crate::assets::router::{self, RouteRequest, RouterContext, Stage, Strategy};
+use crate::plan;
 use crate::scene::{ObjectKind, Pose, SceneObject, Support};
 use crate::state::SceneState;
 

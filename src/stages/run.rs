@@ -5,7 +5,6 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use super::checkpoint::{CheckpointStore, NoCheckpoints};
-use super::plan::{Arrangement, RoomPlan, SurfaceWant, Want};
 use super::{
     StageKind, StageState, ceiling, furniture, furniture_builtin, manipuland, manipuland_builtin,
     wall,
@@ -15,6 +14,7 @@ use crate::agents::{
     AgentError, Backend, BuiltinOrchestrator, CategorySpec, Critic, Designer, Orchestrator,
     PlacementStyle, RunLog, StageConfig, StageSpec, StageSummary, Toolbox, run_stage,
 };
+use crate::plan::{Arrangement, RoomPlan, SurfaceWant, Want};
 use crate::scene::ObjectKind;
 use crate::state::SceneState;
 

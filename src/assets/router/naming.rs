@@ -48,3 +48,15 @@ pub fn names(noun: &str, category: &str) -> bool {
 pub fn object_is(scene: &crate::scene::Scene, noun: &str, o: &SceneObject) -> bool {
     names(noun, &o.category) || names(noun, scene.built_as(o))
 }
+
+/// Footprint of an object whose size nobody knows, m².
+const UNKNOWN_FOOTPRINT: f64 = 0.02;
+
+/// Typical footprint of a thing, m² (upright, as it is placed first).
+pub fn footprint(noun: &str) -> f64 {
+    category_of(noun)
+        .and_then(procedural::prior)
+        .map_or(UNKNOWN_FOOTPRINT, |p| {
+            (p.typical[0] * p.typical[1]).max(1e-4)
+        })
+}
