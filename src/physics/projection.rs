@@ -37,7 +37,7 @@ use serde::Serialize;
 
 use super::PhysicsError;
 use super::as_written::posed_objects;
-use super::collision::{PosedPiece, exit_direction};
+use crate::geometry::penetration::{PosedPiece, exit_direction};
 use crate::geometry::polygon;
 use crate::scene::Pose;
 use crate::state::SceneState;
