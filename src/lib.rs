@@ -6,9 +6,10 @@
 //! output is SDFormat plus Drake model directives.
 //!
 //! Modules follow the pipeline (see `ARCHITECTURE` in the README):
-//! [`prompt`] reads the prompt, [`layout`] builds rooms and architecture, [`stages`] place
-//! objects, [`assets`] make them, [`physics`] checks them (parry3d in-process, Drake through
-//! the bridge), [`formats`] write the scene directory, [`pipeline`] ties the run together.
+//! [`prompt`] reads the prompt, [`plan`] says what each room should contain, [`layout`] builds
+//! rooms and architecture, [`stages`] place objects, [`assets`] make them, [`state`] holds the
+//! scene with its built assets, [`physics`] checks them (parry3d in-process, Drake through the
+//! bridge), [`formats`] write the scene directory, [`pipeline`] ties the run together.
 //!
 //! This crate does not render, simulate or plan by itself: Drake (through `drake_bridge/`)
 //! does the simulation.
@@ -27,8 +28,10 @@ pub mod knowledge;
 pub mod layout;
 pub mod physics;
 pub mod pipeline;
+pub mod plan;
 pub mod prompt;
 pub mod render;
 pub mod scene;
 pub mod stages;
+pub mod state;
 pub mod util;

@@ -9,8 +9,8 @@ use serde_json::json;
 
 use scenesmith::agents::llm::LlmConfig;
 use scenesmith::export::ExportSet;
-use scenesmith::physics::Bridge;
 use scenesmith::physics::protocol::{NoArgs, Versions};
+use scenesmith::physics::{self, Bridge};
 use scenesmith::pipeline::{self, BackendChoice, GenerateOptions, PipelineError};
 
 /// Text prompt -> simulation-ready indoor scene (SDFormat + Drake model directives).
@@ -445,7 +445,7 @@ fn run_check(
 ) -> anyhow::Result<ExitCode> {
     let mut bridge = Bridge::from_env()?;
     let t0 = std::time::Instant::now();
-    let summary = pipeline::check_dir(&mut bridge, &dir, threshold)
+    let summary = physics::check_dir(&mut bridge, &dir, threshold)
         .with_context(|| format!("checking {}", dir.display()))?;
     let passed = summary.passed(max_col);
     if cli_json {
@@ -648,11 +648,11 @@ fn run_layout(
     let out = layout::stage::run_layout(
         prompt,
         seed,
-        &scenesmith::stages::run::Backend::Builtin,
+        &scenesmith::agents::Backend::Builtin,
         &mut log,
     )?;
     if let Some(path) = &png {
-        let bytes = layout::stage::plan_png(prompt, seed, &out.rooms)?;
+        let bytes = scenesmith::render::plan_png(prompt, seed, &out.rooms)?;
         scenesmith::util::fsx::write_atomic(path, &bytes)?;
         eprintln!("wrote {}", path.display());
     }

@@ -2,14 +2,14 @@
 //! still has its drawers and wardrobe filled, both nightstands carry things, what is put away
 //! rests on enclosed surfaces only, and a minimalist room has less.
 
+use scenesmith::agents::Backend;
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::{ObjectKind, Support};
 use scenesmith::stages::clutter::is_enclosed;
-use scenesmith::stages::run::Backend;
 
 const BEDROOM: &str = "A bedroom with a bed, two nightstands, and a wardrobe.";
 
-fn small_objects(prompt: &str, name: &str) -> (scenesmith::stages::SceneState, usize) {
+fn small_objects(prompt: &str, name: &str) -> (scenesmith::state::SceneState, usize) {
     let (state, _) = build_scene(prompt, 1, name, &Backend::Builtin).expect("the scene builds");
     let n = state
         .scene

@@ -1,9 +1,9 @@
 //! The built-in critics' scores measure the scene: each reason states what was counted, and
 //! the counts agree with the scene the stages built.
 
+use scenesmith::agents::Backend;
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::ObjectKind;
-use scenesmith::stages::run::Backend;
 
 #[test]
 fn wall_and_ceiling_scores_count_what_hangs_in_the_room() {

@@ -5,12 +5,12 @@ mod common;
 
 use std::collections::BTreeMap;
 
+use scenesmith::agents::Backend;
 use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::physics::Bridge;
 use scenesmith::physics::protocol::{Load, LoadedInstance, SceneFiles};
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::ObjectKind;
-use scenesmith::stages::run::Backend;
 
 #[test]
 fn drake_loads_what_rust_wrote() {

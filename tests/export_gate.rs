@@ -12,7 +12,7 @@ use export_common::{articulated_state, write_all};
 use scenesmith::export::conformance::{GateOptions, run_gate, table};
 use scenesmith::export::{ExportSet, write_exports};
 use scenesmith::physics::Bridge;
-use scenesmith::stages::SceneState;
+use scenesmith::state::SceneState;
 
 fn asset_layer(dir: &Path, starts_with: &str) -> std::path::PathBuf {
     std::fs::read_dir(dir.join("export/usd/assets"))

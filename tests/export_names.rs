@@ -34,7 +34,7 @@ fn hostile_names_give_valid_escaped_contained_files() {
         PROMPT,
         1,
         "names_test",
-        &scenesmith::stages::run::Backend::Builtin,
+        &scenesmith::agents::Backend::Builtin,
     )
     .unwrap();
     let room = state.scene.rooms[0].id.clone();

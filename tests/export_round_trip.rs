@@ -23,7 +23,7 @@ fn masses_colliders_and_objects_match_in_every_format() {
         &prompt,
         7,
         "round_trip_exports",
-        &scenesmith::stages::run::Backend::Builtin,
+        &scenesmith::agents::Backend::Builtin,
     )
     .unwrap();
     let dir = tempfile::tempdir().unwrap();

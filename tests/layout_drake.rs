@@ -1,6 +1,7 @@
 //! The architecture of a generated house in Drake: it loads (one static model per room, every
 //! shared wall built once), and a sphere dropped over each room lands on that room's floor.
 
+use scenesmith::agents::Backend;
 use scenesmith::agents::RunLog;
 use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::geometry::polygon;
@@ -8,8 +9,7 @@ use scenesmith::layout::stage::{install_rooms, run_layout};
 use scenesmith::physics::Bridge;
 use scenesmith::physics::protocol::{DropSpheres, DropSpheresArgs, Load, SceneFiles, SphereDrop};
 use scenesmith::scene::Scene;
-use scenesmith::stages::SceneState;
-use scenesmith::stages::run::Backend;
+use scenesmith::state::SceneState;
 
 const HOUSE: &str = "A large family home with a master bedroom, two kids bedrooms, a living \
     room, a kitchen, a dining room, a hallway, and two bathrooms. The kitchen is open to the \

@@ -5,12 +5,12 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
+use scenesmith::agents::Backend;
 use scenesmith::agents::RunLog;
 use scenesmith::layout::knowledge::Role;
 use scenesmith::layout::stage::{LayoutOutcome, run_layout};
 use scenesmith::layout::validate::{door_graph, reachable_from_outside};
 use scenesmith::scene::OpeningKind;
-use scenesmith::stages::run::Backend;
 
 fn dev_prompt(id: &str) -> String {
     let text = std::fs::read_to_string(concat!(

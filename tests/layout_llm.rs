@@ -7,10 +7,10 @@ mod common;
 use std::sync::{Arc, Mutex};
 
 use common::mock_llm::{MockServer, Script, text, tool_calls};
+use scenesmith::agents::Backend;
 use scenesmith::agents::llm::{HttpTransport, LlmConfig, Transport};
 use scenesmith::agents::{LogEvent, RunLog, ToolErrorKind};
 use scenesmith::layout::stage::run_layout;
-use scenesmith::stages::run::Backend;
 
 const PROMPT: &str = "A one-bedroom apartment with a bedroom, a living room, and a bathroom.";
 

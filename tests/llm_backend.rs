@@ -8,11 +8,11 @@ use std::sync::{Arc, Mutex};
 
 use common::mock_llm::{MockServer, Reply, Script, text, tool_calls};
 use common::{scenesmith, text as out_text};
+use scenesmith::agents::Backend;
 use scenesmith::agents::LogEvent;
 use scenesmith::agents::ToolErrorKind;
 use scenesmith::agents::llm::{HttpTransport, LlmConfig, Transport};
 use scenesmith::pipeline::build_scene;
-use scenesmith::stages::run::Backend;
 use serde_json::json;
 
 const PROMPT: &str = "A dining room with a table, two chairs and a shelf.";

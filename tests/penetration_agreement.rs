@@ -10,7 +10,7 @@ use scenesmith::physics::Bridge;
 use scenesmith::physics::collision::{penetrating_pairs, posed_objects};
 use scenesmith::physics::protocol::{Penetrations, PenetrationsArgs, SceneFiles};
 use scenesmith::scene::{ObjectKind, Pose, Room, Scene, Support};
-use scenesmith::stages::SceneState;
+use scenesmith::state::SceneState;
 use serde_json::json;
 
 fn block(id: &str, size: [f64; 3], cylinder: bool) -> Asset {

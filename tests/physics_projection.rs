@@ -13,7 +13,7 @@ use scenesmith::physics::projection::{
     Movable, ProjectionOptions, ProjectionStatus, XyRegion, apply_offsets, project_objects,
 };
 use scenesmith::scene::{ObjectKind, Pose};
-use scenesmith::stages::SceneState;
+use scenesmith::state::SceneState;
 
 fn free_and_fixed(state: &SceneState) -> (Vec<String>, Vec<String>) {
     let (free, fixed): (Vec<_>, Vec<_>) = state

@@ -15,7 +15,7 @@ use scenesmith::physics::protocol::Simulate;
 use scenesmith::physics::removal::tilt;
 use scenesmith::physics::settle::{SettleOptions, simulate_args};
 use scenesmith::scene::{ObjectKind, Pose};
-use scenesmith::stages::SceneState;
+use scenesmith::state::SceneState;
 
 /// A room with a procedural table at (2, 2); returns the state, the table id and its top height.
 fn room_with_table() -> (SceneState, String, f64) {

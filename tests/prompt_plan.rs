@@ -2,8 +2,8 @@
 //! object planned with at least its count, negations obeyed, rule targets present, the same
 //! reading always giving the same plan.
 
+use scenesmith::plan::{Arrangement, plan_house_room};
 use scenesmith::prompt::{self, Count, Per};
-use scenesmith::stages::plan::{Arrangement, plan_house_room};
 
 #[test]
 fn plans_cover_every_requested_object() {

@@ -14,7 +14,7 @@ use scenesmith::render::{asset_preview, contact_sheet, write_standard_views};
 use scenesmith::scene::{
     ObjectKind, Opening, OpeningKind, Pose, Room, Scene, SceneObject, Support,
 };
-use scenesmith::stages::SceneState;
+use scenesmith::state::SceneState;
 
 fn red_box_asset() -> Asset {
     let mut b = LinkBuilder::new(

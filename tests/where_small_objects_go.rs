@@ -3,9 +3,9 @@
 //! top, not a row; plates and bowls in short stacks), in bins on the floor (floor bins, each
 //! with its share), in the sink (its basin, not the shelf behind its doors).
 
+use scenesmith::agents::Backend;
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::Support;
-use scenesmith::stages::run::Backend;
 
 #[test]
 fn a_pile_of_blocks_on_the_floor_is_a_heap_on_a_rug() {
@@ -59,14 +59,19 @@ fn a_pile_of_blocks_on_the_floor_is_a_heap_on_a_rug() {
 #[test]
 fn bins_the_prompt_puts_on_the_floor_are_floor_bins() {
     use scenesmith::assets::procedural::{SupportClass, support_sibling};
-    use scenesmith::stages::StageState;
     assert_eq!(
         support_sibling("storage_bin", SupportClass::Floor),
         Some("toy_bin")
     );
     assert_eq!(support_sibling("toy_bin", SupportClass::Floor), None);
-    assert!(StageState::names("storage bin", "toy_bin"));
-    assert!(!StageState::names("storage bin", "laundry_basket"));
+    assert!(scenesmith::assets::router::naming::names(
+        "storage bin",
+        "toy_bin"
+    ));
+    assert!(!scenesmith::assets::router::naming::names(
+        "storage bin",
+        "laundry_basket"
+    ));
     // Two bins on the floor holding toys: both built (as the library's floor bins; the objects
     // are called what the prompt calls them), the toys inside them.
     let prompt = "A playroom with two bins. One bin contains 2 teddy bears. The other bin \
@@ -104,11 +109,19 @@ fn bins_the_prompt_puts_on_the_floor_are_floor_bins() {
 
 #[test]
 fn a_thing_named_with_its_modifiers_is_placed_as_often_as_asked() {
-    use scenesmith::stages::StageState;
     // The object keeps the prompt's name ("spattered_radio"); the plan calls it a radio.
-    assert!(StageState::names("radio", "spattered_radio"));
-    assert!(!StageState::names("radio", "radiogram"));
-    assert!(!StageState::names("table", "side_table"));
+    assert!(scenesmith::assets::router::naming::names(
+        "radio",
+        "spattered_radio"
+    ));
+    assert!(!scenesmith::assets::router::naming::names(
+        "radio",
+        "radiogram"
+    ));
+    assert!(!scenesmith::assets::router::naming::names(
+        "table",
+        "side_table"
+    ));
     let prompt = "A pottery studio with a long wedging table and a squat kiln. A \
                   paint-spattered radio rests on the wedging table.";
     let (state, _) = build_scene(prompt, 4, "named_once", &Backend::Builtin).unwrap();

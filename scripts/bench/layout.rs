@@ -4,12 +4,12 @@
 
 use std::time::Instant;
 
+use scenesmith::agents::Backend;
 use scenesmith::agents::RunLog;
 use scenesmith::layout::search::{SearchConfig, place};
 use scenesmith::layout::stage::run_layout;
 use scenesmith::layout::state::LayoutState;
 use scenesmith::layout::{brief, spec};
-use scenesmith::stages::run::Backend;
 
 const SIZED: [(&str, &str); 4] = [
     ("1 room", "A kitchen with a table and four chairs."),

@@ -23,6 +23,7 @@ use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
 
 use physics_util::{Shape, block, floor, max_penetration, overlapping_heap, place, room};
+use scenesmith::agents::Backend;
 use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::physics::BridgePool;
 use scenesmith::physics::drake_projection::ProjectSolver;
@@ -33,8 +34,7 @@ use scenesmith::physics::protocol::{Load, NoArgs, SceneFiles, Simulate, Versions
 use scenesmith::physics::settle::{ContactModel, ContactOptions, SettleOptions, simulate_args};
 use scenesmith::pipeline::{GenerateOptions, build_scene, generate};
 use scenesmith::scene::{ObjectKind, Pose};
-use scenesmith::stages::SceneState;
-use scenesmith::stages::run::Backend;
+use scenesmith::state::SceneState;
 
 struct Args {
     parts: Vec<String>,

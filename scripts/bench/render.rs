@@ -4,11 +4,11 @@
 
 use std::time::Instant;
 
+use scenesmith::agents::Backend;
 use scenesmith::pipeline::build_scene;
 use scenesmith::render::plan::{PlanOptions, plan_view};
 use scenesmith::render::scene::{RenderMesh, RenderScene};
 use scenesmith::render::views::{RoomViewOptions, room_views};
-use scenesmith::stages::run::Backend;
 
 /// Splits triangles into four (midpoints), one mesh at a time round-robin, until the scene
 /// has at least `target` triangles (same shapes, denser meshes).

@@ -1,11 +1,13 @@
 //! The interfaces every backend implements (designer, critic, orchestrator), the context they
-//! act through, and the run log every tool call lands in.
+//! act through, the run log every tool call lands in, which backend runs the stages and what a
+//! stage kept.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use super::critique::{CategorySpec, Critique};
+use super::llm::{LlmConfig, SharedTransport};
 use super::tool::{Role, ToolCallRecord, ToolError, Toolbox};
 
 /// How precisely objects are aligned: `perfect` snaps to walls and grids, `natural` allows the
@@ -194,4 +196,45 @@ pub trait Critic<S> {
     fn critique(&mut self, state: &mut S, cx: &mut AgentCx<'_, S>) -> Result<Critique, AgentError>;
     /// Forgets everything (between stages).
     fn reset(&mut self) {}
+}
+
+/// Which agents run the stages.
+#[derive(Clone)]
+pub enum Backend {
+    /// The offline rule-based designers and measurement-based critics.
+    Builtin,
+    /// An OpenAI-compatible chat model for every role.
+    Llm {
+        /// Shared transport (HTTP or replay).
+        transport: SharedTransport,
+        /// Model settings.
+        config: LlmConfig,
+    },
+}
+
+impl Backend {
+    /// Name recorded in `scene.json`.
+    pub fn name(&self) -> String {
+        match self {
+            Backend::Builtin => "builtin".into(),
+            Backend::Llm { config, .. } => format!("llm:{}", config.model),
+        }
+    }
+}
+
+/// What a stage kept, for the run summary.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct StageSummary {
+    /// Stage name.
+    pub stage: String,
+    /// Room.
+    pub room: String,
+    /// Supporting entity (manipuland stage).
+    pub entity: Option<String>,
+    /// Scores of the kept checkpoint.
+    pub critique: Option<Critique>,
+    /// Critique rounds run.
+    pub rounds: usize,
+    /// Wall time of the stage (agents and tools), seconds; not written to `scene.json`.
+    pub seconds: f64,
 }

@@ -15,7 +15,8 @@ pub mod prompts;
 pub mod tool;
 
 pub use backend::{
-    AgentCx, AgentError, Critic, DesignRequest, Designer, LogEvent, PlacementStyle, RunLog,
+    AgentCx, AgentError, Backend, Critic, DesignRequest, Designer, LogEvent, PlacementStyle,
+    RunLog, StageSummary,
 };
 pub use critique::{CategorySpec, Critique, Issue, Score};
 pub use orchestrator::{

@@ -11,7 +11,6 @@ use serde::{Deserialize, Serialize};
 
 use crate::prompt::{Count, Reading};
 use crate::scene::{ObjectKind, Scene};
-use crate::stages::StageState;
 
 /// One requirement of the reader's plan and how the scene meets it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -51,7 +50,7 @@ pub fn plan_coverage(reading: &Reading, scene: &Scene) -> PlanCoverage {
     // are the library's wooden blocks, a variant of the toy block the noun names.
     let mut built: BTreeMap<&str, Vec<&'static str>> = BTreeMap::new();
     for m in &reading.mentions {
-        if let Some(c) = StageState::category_of(&m.description()) {
+        if let Some(c) = crate::assets::router::naming::category_of(&m.description()) {
             built.entry(m.category.as_str()).or_default().push(c);
         }
     }
@@ -61,7 +60,10 @@ pub fn plan_coverage(reading: &Reading, scene: &Scene) -> PlanCoverage {
             .objects
             .iter()
             .filter(|o| o.kind != ObjectKind::Architecture)
-            .filter(|o| StageState::is(scene, noun, o) || described.contains(&scene.built_as(o)))
+            .filter(|o| {
+                crate::assets::router::naming::object_is(scene, noun, o)
+                    || described.contains(&scene.built_as(o))
+            })
             .count() as u32
     };
     // Within a room, repeated mentions of a category ("a table ... the table") merge into the

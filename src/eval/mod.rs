@@ -33,7 +33,7 @@ use crate::physics::settle::{ContactModel, ContactOptions};
 use crate::physics::{BridgePool, PhysicsError};
 use crate::prompt;
 use crate::scene::ObjectKind;
-use crate::stages::SceneState;
+use crate::state::SceneState;
 use crate::util::fsx::write_atomic;
 
 pub use coverage::{PlanCoverage, PlannedRequirement};
@@ -277,7 +277,7 @@ fn removed(state: &SceneState, coverage: &PlanCoverage) -> Removed {
         let short = coverage.requirements.iter().find(|q| {
             q.kind != "none"
                 && q.present < q.required
-                && crate::stages::StageState::names(&q.category, &r.category)
+                && crate::assets::router::naming::names(&q.category, &r.category)
         });
         if let Some(q) = short {
             *lost.entry(q.category.clone()).or_default() += 1;

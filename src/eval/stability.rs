@@ -18,7 +18,7 @@ use crate::physics::settle::{SettleOptions, SettleReply, simulate_args};
 use crate::physics::workspace::{Role, Workspace};
 use crate::physics::{BridgePool, PhysicsError};
 use crate::scene::{ObjectKind, SceneObject, Support};
-use crate::stages::SceneState;
+use crate::state::SceneState;
 
 /// Free objects closer than this (collision bounds) share an island, metres.
 pub const ISLAND_GAP_M: f64 = 0.02;

@@ -117,7 +117,7 @@ mod tests {
             "a bedroom with a cabinet and a shelf with books",
             5,
             "glb_unit",
-            &crate::stages::run::Backend::Builtin,
+            &crate::agents::Backend::Builtin,
         )
         .unwrap();
         let view = SceneView::new(&state).unwrap();

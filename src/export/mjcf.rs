@@ -482,14 +482,14 @@ pub fn files(view: &SceneView<'_>) -> Result<Vec<ExportFile>, ExportError> {
 mod tests {
     use super::*;
     use crate::pipeline::build_scene;
-    use crate::stages::SceneState;
+    use crate::state::SceneState;
 
     fn kitchen() -> SceneState {
         build_scene(
             "a kitchen with a table, two chairs, a cabinet, plates and mugs",
             2,
             "mjcf_unit",
-            &crate::stages::run::Backend::Builtin,
+            &crate::agents::Backend::Builtin,
         )
         .unwrap()
         .0

@@ -22,7 +22,7 @@ pub mod view;
 
 use std::path::{Component, Path, PathBuf};
 
-use crate::stages::SceneState;
+use crate::state::SceneState;
 use crate::util::fsx::{FsError, io_err};
 
 pub use view::SceneView;

@@ -546,7 +546,7 @@ fn joints(w: &mut Usda, av: &AssetView<'_>) {
 mod tests {
     use super::*;
     use crate::pipeline::build_scene;
-    use crate::stages::SceneState;
+    use crate::state::SceneState;
 
     fn text<'a>(files: &'a [ExportFile], path: &str) -> &'a str {
         let f = files.iter().find(|f| f.path == path).unwrap();
@@ -558,7 +558,7 @@ mod tests {
             "a bedroom with a cabinet and books",
             4,
             "usd_unit",
-            &crate::stages::run::Backend::Builtin,
+            &crate::agents::Backend::Builtin,
         )
         .unwrap();
         // Weld the cabinet with its door half open.

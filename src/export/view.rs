@@ -14,7 +14,7 @@ use super::ExportError;
 use crate::assets::{Asset, Texture, link_poses};
 use crate::geometry::TriMesh;
 use crate::scene::{Pose, Scene, SceneObject, sanitize_name};
-use crate::stages::SceneState;
+use crate::state::SceneState;
 
 /// How an object is attached to the world.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]

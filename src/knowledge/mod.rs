@@ -7,7 +7,7 @@
 //! Room types live in the room registry ([`rooms`], one file per type under
 //! `src/data/rooms/`), the room-independent defaults in `src/data/knowledge/objects.json`; both
 //! are compiled in. This module loads and checks them and answers lookups; it does not read
-//! prompts (see [`crate::prompt`]) or plan rooms (see [`crate::stages::plan`]).
+//! prompts (see [`crate::prompt`]) or plan rooms (the room plans do, `plan`).
 
 pub mod rooms;
 

@@ -4,8 +4,8 @@
 //! type in `src/data/rooms/_house.json`. `src/data/rooms/README.md` says what each field means.
 //!
 //! This module owns parsing and checking that data. The prompt reader and the stage plans read
-//! it through [`crate::knowledge::knowledge`], the layout through
-//! [`crate::layout::knowledge`]; neither keeps a table of its own.
+//! it through [`crate::knowledge::knowledge`], the layout through its own `layout::knowledge`;
+//! neither keeps a table of its own.
 
 use std::collections::{BTreeMap, HashMap};
 

@@ -12,10 +12,9 @@ use serde::{Deserialize, Serialize};
 use super::brief::HouseBrief;
 use super::knowledge::{self, Role, knowledge};
 use crate::assets::procedural;
+use crate::plan::{Arrangement, RoomPlan, plan_room};
 use crate::prompt;
 use crate::scene::IdAllocator;
-use crate::stages::StageState;
-use crate::stages::plan::{Arrangement, RoomPlan, plan_room};
 
 /// Default wall height, metres.
 pub const WALL_HEIGHT: f64 = 2.7;
@@ -144,7 +143,7 @@ pub struct ContentNeeds {
 }
 
 fn typical(noun: &str) -> Option<[f64; 3]> {
-    let cat = StageState::category_of(noun).unwrap_or(noun);
+    let cat = crate::assets::router::naming::category_of(noun).unwrap_or(noun);
     procedural::prior(cat).map(|p| p.typical)
 }
 

@@ -10,15 +10,13 @@ use super::tools;
 use super::validate::Validation;
 use crate::agents::llm::{LlmCritic, LlmDesigner, LlmOrchestrator};
 use crate::agents::{
-    AgentError, BuiltinOrchestrator, Critic, Designer, Orchestrator, RunLog, StageConfig,
-    StageSpec, run_stage,
+    AgentError, Backend, BuiltinOrchestrator, Critic, Designer, Orchestrator, RunLog, StageConfig,
+    StageSpec, StageSummary, run_stage,
 };
 use crate::geometry::GeometryError;
 use crate::prompt::Reading;
-use crate::render::RenderError;
 use crate::scene::{ObjectKind, Pose, Room, SceneObject, Support};
-use crate::stages::SceneState;
-use crate::stages::run::{Backend, StageSummary};
+use crate::state::SceneState;
 
 /// What the layout stage produced.
 #[derive(Debug, Clone)]
@@ -127,15 +125,6 @@ pub fn run_layout(
         },
         state,
     })
-}
-
-/// The top-down plan of a layout as PNG bytes: rooms with their names, sizes and materials,
-/// textured floors, walls, doors with their swing and windows (what `scenesmith layout --png`
-/// writes and an LLM designer or critic of the layout stage can be shown).
-pub fn plan_png(prompt: &str, seed: u64, rooms: &[Room]) -> Result<Vec<u8>, RenderError> {
-    let mut state = SceneState::new(crate::scene::Scene::new(prompt, seed, "layout"));
-    install_rooms(&mut state, rooms)?;
-    crate::render::top_view(&state)?.encode_png()
 }
 
 /// Adds the rooms to the scene, each with its static architecture object.

@@ -17,6 +17,7 @@
 
 pub mod as_written;
 pub mod bridge;
+pub mod check;
 pub mod collision;
 pub mod drake_projection;
 pub mod pool;
@@ -28,6 +29,7 @@ pub mod settle;
 pub mod workspace;
 
 pub use bridge::{Bridge, BridgeConfig, BridgeError};
+pub use check::{CheckSummary, check_dir};
 pub use pool::BridgePool;
 
 /// What can go wrong in the physics steps.

@@ -34,7 +34,7 @@ use super::removal::{RemovalRules, furniture_verdict, manipuland_verdict};
 use super::settle::{SettleOptions, SettleReply, simulate_args};
 use super::workspace::{Role, Workspace};
 use crate::scene::{ObjectKind, PlacedAgain, Pose, Scene, SceneObject, Support};
-use crate::stages::{SceneState, StageState};
+use crate::state::SceneState;
 
 /// Options of [`post_process`].
 #[derive(Debug, Clone)]
@@ -221,11 +221,11 @@ impl Lost<'_> {
     /// naming it wants.
     fn short_of(&self, scene: &Scene, category: &str) -> bool {
         self.asked.iter().any(|(noun, wanted)| {
-            StageState::names(noun, category)
+            crate::assets::router::naming::names(noun, category)
                 && (scene
                     .objects
                     .iter()
-                    .filter(|o| StageState::is(scene, noun, o))
+                    .filter(|o| crate::assets::router::naming::object_is(scene, noun, o))
                     .count() as u32)
                     < *wanted
         })

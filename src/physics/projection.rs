@@ -37,10 +37,10 @@ use serde::Serialize;
 
 use super::PhysicsError;
 use super::as_written::posed_objects;
-use super::collision::{PosedPiece, exit_direction};
+use crate::geometry::penetration::{PosedPiece, exit_direction};
 use crate::geometry::polygon;
 use crate::scene::Pose;
-use crate::stages::SceneState;
+use crate::state::SceneState;
 
 /// Which free objects may move.
 #[derive(Debug, Clone, PartialEq, Default)]

@@ -13,7 +13,7 @@ use super::PhysicsError;
 use crate::formats::FormatError;
 use crate::formats::directives::{Variant, directives_yaml, package_xml};
 use crate::formats::sdf::asset_files;
-use crate::stages::SceneState;
+use crate::state::SceneState;
 
 /// How an object takes part in a subset scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]

@@ -5,7 +5,7 @@
 //! This is the deterministic reader the built-in designer relies on. Vocabulary is data
 //! (`src/data/lexicon/*.json`, room words from `src/data/knowledge/`), so adding a noun or a
 //! phrase is a data change. The reader does not decide what a room gets beyond what the prompt
-//! says; [`crate::stages::plan`] merges a reading with the room type's knowledge.
+//! says; the room plans (`plan`) merge a reading with the room type's knowledge.
 //!
 //! Pipeline: [`tokens`] (words with spans and punctuation) -> `chunk` (noun phrases,
 //! prepositions, verbs) -> [`rooms`] (house structure from the first sentence) -> `interpret`

@@ -30,7 +30,9 @@ pub use image::Image;
 pub use scene::RenderScene;
 pub use views::{asset_preview, contact_sheet, write_standard_views, write_views};
 
-use crate::stages::SceneState;
+use crate::layout::stage::install_rooms;
+use crate::scene::Room;
+use crate::state::SceneState;
 
 /// What can go wrong rendering.
 #[derive(Debug, thiserror::Error)]
@@ -91,6 +93,15 @@ pub fn render_scene_dir(
 pub fn top_view(state: &SceneState) -> Result<Image, RenderError> {
     let rs = RenderScene::from_state(state)?;
     plan::plan_view(&rs, &plan::PlanOptions::default())
+}
+
+/// The top-down plan of a layout as PNG bytes: rooms with their names, sizes and materials,
+/// textured floors, walls, doors with their swing and windows (what `scenesmith layout --png`
+/// writes and an LLM designer or critic of the layout stage can be shown).
+pub fn plan_png(prompt: &str, seed: u64, rooms: &[Room]) -> Result<Vec<u8>, RenderError> {
+    let mut state = SceneState::new(crate::scene::Scene::new(prompt, seed, "layout"));
+    install_rooms(&mut state, rooms)?;
+    top_view(&state)?.encode_png()
 }
 
 /// Renders the corner views of the room `room_id` of a scene state; `(name, image)` pairs

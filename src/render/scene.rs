@@ -10,7 +10,7 @@ use super::RenderError;
 use crate::assets::{self, Asset, Texture};
 use crate::geometry::TriMesh;
 use crate::scene::{ObjectKind, Pose, Room};
-use crate::stages::SceneState;
+use crate::state::SceneState;
 
 /// What a mesh is, for architecture; everything else is [`Role::Object`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -18,7 +18,7 @@ use super::shadow::FloorShadow;
 use super::text::{draw_text, measure};
 use crate::assets::Asset;
 use crate::scene::{ObjectKind, Room};
-use crate::stages::SceneState;
+use crate::state::SceneState;
 use crate::util::fsx::{FsError, files_under, replace_folder, swap_folder};
 
 /// Options of the per-room perspective views.

@@ -8,13 +8,13 @@ use serde_json::json;
 
 use super::common::{self, ObjectInfo, floor_footprints, object_info};
 use super::placement::Footprint;
-use super::plan::Arrangement;
 use super::room::RoomFrame;
 use super::{RoutedAsset, StageState};
 use crate::agents::{
     Access, AgentCx, AgentError, CategorySpec, Critic, Critique, DesignRequest, Designer, Issue,
     Role, Score, ToolError, Toolbox,
 };
+use crate::plan::Arrangement;
 use crate::scene::{ObjectKind, Pose, Support};
 
 /// Clear height kept under ceiling objects over walkable floor, metres.
@@ -247,7 +247,9 @@ impl Designer<StageState> for BuiltinCeilingDesigner {
             if let Arrangement::Above { target } = &want.arrangement {
                 let ids: Vec<String> = state
                     .room_objects()
-                    .filter(|o| StageState::is(&state.scene.scene, target, o))
+                    .filter(|o| {
+                        crate::assets::router::naming::object_is(&state.scene.scene, target, o)
+                    })
                     .map(|o| o.id.clone())
                     .collect();
                 for t in ids {

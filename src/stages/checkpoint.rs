@@ -10,10 +10,10 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::SceneState;
 use crate::agents::RunLog;
 use crate::formats::sdf::asset_files;
 use crate::scene::Scene;
+use crate::state::SceneState;
 use crate::util::fsx::write_atomic;
 
 /// Where finished stages are saved and found again.

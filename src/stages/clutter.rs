@@ -10,8 +10,8 @@
 //! counts, and a parent the prompt filled itself gets no defaults (the plan already left it
 //! out).
 
-use super::StageState;
-use super::plan::{Arrangement, Want, clutter_factor, one_per_parent, split_counts};
+use crate::assets::router::naming::footprint;
+use crate::plan::{Arrangement, Want, clutter_factor, one_per_parent, split_counts};
 use crate::prompt::{self, Density};
 use crate::scene::{AssetRecord, SurfaceRecord};
 
@@ -35,9 +35,6 @@ const COVERAGE: Coverage = Coverage {
 /// (a long bookcase is not filled with 150 books: each one is a body the physics steps have to
 /// carry).
 pub const MAX_PER_PIECE: u32 = 36;
-
-/// Footprint of an object whose size nobody knows, m².
-const UNKNOWN_FOOTPRINT: f64 = 0.02;
 
 /// Behind a door or in a drawer: a surface of a moving link (a drawer), or any surface but
 /// the top of an articulated piece (shelves behind its doors).
@@ -69,15 +66,6 @@ pub fn clutter_area(rec: &AssetRecord, density: Option<Density>) -> (f64, f64) {
         open += (share * scale).min(0.8) * area;
     }
     (open, enclosed)
-}
-
-/// Typical footprint of a thing, m² (upright, as it is placed first).
-pub(crate) fn footprint(noun: &str) -> f64 {
-    StageState::category_of(noun)
-        .and_then(crate::assets::procedural::prior)
-        .map_or(UNKNOWN_FOOTPRINT, |p| {
-            (p.typical[0] * p.typical[1]).max(1e-4)
-        })
 }
 
 /// How many objects of `nouns` (mixed as `split_counts` mixes them) cover `area` m².

@@ -140,7 +140,7 @@ pub fn round3(v: f64) -> f64 {
 pub fn present_count(state: &StageState, noun: &str) -> u32 {
     state
         .room_objects()
-        .filter(|o| StageState::is(&state.scene.scene, noun, o))
+        .filter(|o| crate::assets::router::naming::object_is(&state.scene.scene, noun, o))
         .count() as u32
 }
 

@@ -8,10 +8,10 @@
 use serde_json::{Value, json};
 
 use super::StageState;
-use super::plan::Arrangement;
 use crate::agents::{
     AgentCx, AgentError, Critic, Critique, DesignRequest, Designer, Issue, Role, Score,
 };
+use crate::plan::Arrangement;
 
 /// Whether a piece of this category is a seat that faces a table (`chair`, `dining_chair`,
 /// `bar_stool`).
@@ -108,7 +108,7 @@ impl BuiltinFurnitureDesigner {
     fn present(state: &StageState, noun: &str) -> Vec<String> {
         state
             .room_objects()
-            .filter(|o| StageState::is(&state.scene.scene, noun, o))
+            .filter(|o| crate::assets::router::naming::object_is(&state.scene.scene, noun, o))
             .map(|o| o.id.clone())
             .collect()
     }
@@ -204,7 +204,7 @@ impl BuiltinFurnitureDesigner {
             };
             let is_explicit = explicit
                 .iter()
-                .any(|n| StageState::is(&state.scene.scene, n, &obj));
+                .any(|n| crate::assets::router::naming::object_is(&state.scene.scene, n, &obj));
             let _ = cx.call(state, Role::Designer, "remove_object", json!({"id": id}));
             if is_explicit {
                 // Re-place a requested piece somewhere else; drop a default one.

@@ -13,11 +13,12 @@ use serde::{Deserialize, Serialize};
 
 use super::common::{self, ObjectInfo, object_info};
 use super::room::RoomFrame;
-use super::{RoutedAsset, SceneState, StageState};
+use super::{RoutedAsset, StageState};
 use crate::agents::{Access, CategorySpec, ToolError, Toolbox};
 use crate::assets::Asset;
 use crate::physics::collision::{object_penetration, posed_object};
 use crate::scene::{AssetRecord, ObjectKind, Pose, SceneObject, Support, SurfaceRecord};
+use crate::state::SceneState;
 
 /// Gap kept between neighbouring small objects, metres.
 const GAP: f64 = 0.008;
@@ -932,7 +933,7 @@ fn place_inside(state: &mut StageState, a: FillArgs) -> Result<PlaceResult, Tool
     // stuffed animals"), the smallest plausible size of the same object, if that holds more.
     let mut trial = state.clone();
     let (mut routed, mut ids) = fill(&mut trial, None)?;
-    let smallest = StageState::category_of(&a.description)
+    let smallest = crate::assets::router::naming::category_of(&a.description)
         .and_then(crate::assets::procedural::prior)
         .map(|p| p.min);
     if (ids.len() as u32) < a.count
@@ -1209,7 +1210,7 @@ pub fn toolbox() -> Toolbox<StageState> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::assets::procedural::{AssetRequest, build};
+    use crate::assets::procedural::{AssetRequest, SupportClass, build, categories, prior};
 
     #[test]
     fn plates_nest_books_do_not() {
@@ -1238,5 +1239,65 @@ mod tests {
         let [blo, bhi] = rec.bounds;
         // Lying on its side, the book's height is its thickness.
         assert!(((hi[2] - lo[2]) - (bhi[0] - blo[0])).abs() < 1e-9);
+    }
+
+    /// Over every piece of furniture: the body leaves the space above each of its surfaces
+    /// mostly free, apart from dividers (a sideboard's partitions) and fixtures (a sink's basin over
+    /// the cabinet shelf) that placement steers around. A surface set below its board, or a shelf
+    /// whose clearance runs into the next one, would show here as covered.
+    #[test]
+    fn furniture_surfaces_have_free_space_above_them() {
+        let mut failures = Vec::new();
+        let mut partitioned = Vec::new();
+        for cat in categories() {
+            if prior(cat).is_none_or(|p| p.support != SupportClass::Floor) {
+                continue;
+            }
+            let asset = build(&AssetRequest::new(cat, 3)).unwrap();
+            for s in asset
+                .surfaces
+                .iter()
+                .filter(|s| !s.id.starts_with("inside"))
+            {
+                let area = s.size[0] * s.size[1];
+                let rects = intrusions(&asset, s, &Default::default());
+                let covered = union_area(&rects, s.size);
+                if covered > 0.0 {
+                    partitioned.push(format!("{cat}/{}", s.id));
+                }
+                if covered > 0.7 * area {
+                    failures.push(format!(
+                        "{cat}/{}: {:.0} % covered {rects:?} {s:?}",
+                        s.id,
+                        100.0 * covered / area
+                    ));
+                }
+            }
+        }
+        assert!(failures.is_empty(), "{}", failures.join("\n"));
+        assert!(
+            partitioned.iter().any(|k| k.starts_with("sideboard/")),
+            "the sideboard's partitions are not seen: {partitioned:?}"
+        );
+    }
+
+    /// Area of the union of rectangles `[u0, u1, v0, v1]` over a `size` surface, on a 2 mm grid.
+    fn union_area(rects: &[[f64; 4]], size: [f64; 2]) -> f64 {
+        let cell = 0.002;
+        let (nu, nv) = ((size[0] / cell) as usize, (size[1] / cell) as usize);
+        let mut n = 0usize;
+        for i in 0..nu {
+            let u = -size[0] / 2.0 + (i as f64 + 0.5) * cell;
+            for j in 0..nv {
+                let v = -size[1] / 2.0 + (j as f64 + 0.5) * cell;
+                if rects
+                    .iter()
+                    .any(|r| (r[0]..r[1]).contains(&u) && (r[2]..r[3]).contains(&v))
+                {
+                    n += 1;
+                }
+            }
+        }
+        n as f64 * cell * cell
     }
 }

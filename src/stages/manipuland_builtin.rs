@@ -4,10 +4,10 @@ use serde_json::{Value, json};
 
 use super::StageState;
 use super::manipuland::{items_on, surfaces};
-use super::plan::{Arrangement, Want};
 use crate::agents::{
     AgentCx, AgentError, Critic, Critique, DesignRequest, Designer, Issue, Role, Score,
 };
+use crate::plan::{Arrangement, Want};
 use crate::scene::ObjectKind;
 
 /// The built-in manipuland designer.
@@ -56,7 +56,7 @@ fn surface_tiers(state: &StageState, entity: &str, asked: bool) -> [Vec<String>;
 /// Whether an object stands like a slab (a book: thin, tall) and so may also be laid flat;
 /// a microwave or a pan on its side is no arrangement anyone makes.
 fn may_lie_flat(noun: &str) -> bool {
-    StageState::category_of(noun)
+    crate::assets::router::naming::category_of(noun)
         .and_then(crate::assets::procedural::prior)
         .is_some_and(|p| p.typical[0].min(p.typical[1]) < 0.5 * p.typical[2])
 }
@@ -66,7 +66,7 @@ const STORED_STACK: u32 = 3;
 
 /// Whether a thing put away goes in low stacks: flat things (folded clothes, towels, plates).
 fn stacks_when_stored(noun: &str) -> bool {
-    StageState::category_of(noun)
+    crate::assets::router::naming::category_of(noun)
         .and_then(crate::assets::procedural::prior)
         .is_some_and(|p| p.typical[2] < 0.3 * p.typical[0].min(p.typical[1]))
 }
@@ -123,7 +123,9 @@ impl BuiltinManipulandDesigner {
                 // into it, not into the first container of the room.
                 let mut containers: Vec<String> = state
                     .room_objects()
-                    .filter(|o| StageState::is(&state.scene.scene, parent, o))
+                    .filter(|o| {
+                        crate::assets::router::naming::object_is(&state.scene.scene, parent, o)
+                    })
                     .map(|o| o.id.clone())
                     .collect();
                 containers.sort_by_key(|c| c != entity);

@@ -1,7 +1,7 @@
-//! Stages of the pipeline and the state they edit.
+//! The placement stages and the state their tools work on.
 //!
-//! [`SceneState`] is the scene plus the built assets its objects instantiate; every stage edits
-//! it through the same few operations (build an asset, add, move or remove an object).
+//! Every stage edits the scene through [`SceneState`]'s few operations (build an asset, add,
+//! move or remove an object); [`StageState`] adds the room in focus and its plan.
 
 pub mod ceiling;
 pub mod checkpoint;
@@ -12,124 +12,20 @@ pub mod furniture_builtin;
 pub mod manipuland;
 pub mod manipuland_builtin;
 pub mod placement;
-pub mod plan;
 pub mod room;
 pub mod run;
 pub mod wall;
 
-use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
 use crate::agents::ToolError;
-use crate::assets::procedural::{self, AssetRequest, SupportClass};
+use crate::assets::procedural::{self, SupportClass};
 use crate::assets::router::{self, RouteRequest, RouterContext, Stage, Strategy};
-use crate::assets::{Asset, AssetError};
-use crate::scene::{ObjectKind, Pose, Scene, SceneObject, Support};
-
-/// The scene being built and the assets it uses.
-#[derive(Debug, Clone)]
-pub struct SceneState {
-    /// The scene model.
-    pub scene: Scene,
-    /// Built assets by id (architecture included).
-    pub assets: BTreeMap<String, Asset>,
-}
-
-impl SceneState {
-    /// State around an empty scene.
-    pub fn new(scene: Scene) -> SceneState {
-        SceneState {
-            scene,
-            assets: BTreeMap::new(),
-        }
-    }
-
-    /// Builds (or reuses) the asset a request describes and registers it with the scene.
-    pub fn build_asset(&mut self, request: &AssetRequest) -> Result<String, AssetError> {
-        let asset = procedural::build(request)?;
-        Ok(self.insert_asset(asset))
-    }
-
-    /// Registers an already built asset; returns its id.
-    pub fn insert_asset(&mut self, asset: Asset) -> String {
-        let id = asset.id.clone();
-        self.scene
-            .assets
-            .entry(id.clone())
-            .or_insert_with(|| asset.record());
-        self.assets.entry(id.clone()).or_insert(asset);
-        id
-    }
-
-    /// Adds an object instantiating `asset_id`; returns the new object's id.
-    pub fn add_object(
-        &mut self,
-        category: &str,
-        kind: ObjectKind,
-        room: &str,
-        asset_id: &str,
-        world_from_object: Pose,
-        support: Support,
-    ) -> String {
-        let id = self.scene.ids.allocate(category);
-        self.scene.objects.push(SceneObject {
-            id: id.clone(),
-            category: category.to_string(),
-            name: None,
-            kind,
-            room: room.to_string(),
-            asset: asset_id.to_string(),
-            world_from_object,
-            support,
-            welded: kind.welded_by_default(),
-            joint_positions: BTreeMap::new(),
-        });
-        id
-    }
-
-    /// Removes an object (and everything resting on it) from the scene, recording why.
-    pub fn remove_object(&mut self, id: &str, stage: &str, reason: &str) {
-        let mut doomed = vec![id.to_string()];
-        let mut i = 0;
-        while i < doomed.len() {
-            let parent = doomed[i].clone();
-            for o in &self.scene.objects {
-                if matches!(&o.support, Support::Object { parent: p, .. } if *p == parent)
-                    && !doomed.contains(&o.id)
-                {
-                    doomed.push(o.id.clone());
-                }
-            }
-            i += 1;
-        }
-        for d in &doomed {
-            if let Some(pos) = self.scene.objects.iter().position(|o| &o.id == d) {
-                let o = self.scene.objects.remove(pos);
-                let why = if d == id {
-                    reason.to_string()
-                } else {
-                    format!("its support {id} was removed: {reason}")
-                };
-                self.scene.removed.push(crate::scene::Removal {
-                    object: o.id,
-                    category: o.category,
-                    stage: stage.to_string(),
-                    reason: why,
-                });
-            }
-        }
-    }
-
-    /// Drops assets no object uses any more.
-    pub fn prune_assets(&mut self) {
-        let used: std::collections::BTreeSet<_> =
-            self.scene.objects.iter().map(|o| o.asset.clone()).collect();
-        self.assets.retain(|k, _| used.contains(k));
-        self.scene.assets.retain(|k, _| used.contains(k));
-    }
-}
+use crate::plan;
+use crate::scene::{ObjectKind, Pose, SceneObject, Support};
+use crate::state::SceneState;
 
 /// The placement stages, in pipeline order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Hash, PartialOrd, Ord)]
@@ -285,56 +181,12 @@ pub struct StageState {
 }
 
 impl StageState {
-    /// The category a free-text description names: the longest phrase (up to three words)
-    /// that resolves, preferring later words (the head noun comes last in English).
-    pub fn category_of(description: &str) -> Option<&'static str> {
-        router::parse::main_categories(description).first().copied()
-    }
-
-    /// True when an object of `category` is what `noun` asks for: a category the router can
-    /// build for it (at any stage), or the generic stand-in named after an unknown noun.
-    pub fn names(noun: &str, category: &str) -> bool {
-        let sanitized = crate::scene::sanitize_name(noun);
-        if category == noun || category == sanitized {
-            return true;
-        }
-        // A prompt's name keeps the noun's modifiers and ends with the noun
-        // ("spattered_radio" for a "paint-spattered radio" the plan calls a radio).
-        if procedural::prior(category).is_none()
-            && !sanitized.is_empty()
-            && category
-                .strip_suffix(sanitized.as_str())
-                .is_some_and(|rest| rest.ends_with('_'))
-        {
-            return true;
-        }
-        let main = router::parse::main_categories(noun);
-        // Objects carry the prompt's name ("manicure_table"): what the router builds for the
-        // name is what it is.
-        let built_as = router::parse::main_categories(&category.replace('_', " "));
-        main.contains(&category)
-            || built_as.first().is_some_and(|b| main.contains(b))
-            || procedural::prior(category).is_some_and(|p| {
-                main.iter()
-                    .any(|c| procedural::support_sibling(c, p.support) == Some(category))
-            })
-            || router::parse::phrase(noun)
-                .unknown_noun
-                .is_some_and(|u| crate::scene::sanitize_name(&u) == category)
-    }
-
-    /// True when `o` in `scene` is what `noun` asks for, by its name (the prompt's,
-    /// "manicure_table") or by the library category its asset is built as (`table`).
-    pub fn is(scene: &crate::scene::Scene, noun: &str, o: &SceneObject) -> bool {
-        StageState::names(noun, &o.category) || StageState::names(noun, scene.built_as(o))
-    }
-
     /// True when `o` counts for the plan item `want`: its noun names it, or it is what the
     /// router builds for the item's description ("wooden play blocks" are the library's
     /// wooden blocks, a variant of the toy block the noun names).
     pub fn is_wanted(scene: &crate::scene::Scene, want: &plan::Want, o: &SceneObject) -> bool {
-        StageState::category_of(&want.description) == Some(scene.built_as(o))
-            || StageState::is(scene, &want.noun, o)
+        crate::assets::router::naming::category_of(&want.description) == Some(scene.built_as(o))
+            || crate::assets::router::naming::object_is(scene, &want.noun, o)
     }
 
     /// Builds (or reuses) the asset for `description` through the asset router (attributes

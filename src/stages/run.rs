@@ -5,58 +5,18 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use super::checkpoint::{CheckpointStore, NoCheckpoints};
-use super::plan::{Arrangement, RoomPlan, SurfaceWant, Want};
 use super::{
-    SceneState, StageKind, StageState, ceiling, furniture, furniture_builtin, manipuland,
-    manipuland_builtin, wall,
+    StageKind, StageState, ceiling, furniture, furniture_builtin, manipuland, manipuland_builtin,
+    wall,
 };
-use crate::agents::llm::{LlmConfig, LlmCritic, LlmDesigner, LlmOrchestrator, SharedTransport};
+use crate::agents::llm::{LlmCritic, LlmDesigner, LlmOrchestrator};
 use crate::agents::{
-    AgentError, BuiltinOrchestrator, CategorySpec, Critic, Critique, Designer, Orchestrator,
-    PlacementStyle, RunLog, StageConfig, StageSpec, Toolbox, run_stage,
+    AgentError, Backend, BuiltinOrchestrator, CategorySpec, Critic, Designer, Orchestrator,
+    PlacementStyle, RunLog, StageConfig, StageSpec, StageSummary, Toolbox, run_stage,
 };
+use crate::plan::{Arrangement, RoomPlan, SurfaceWant, Want};
 use crate::scene::ObjectKind;
-
-/// Which agents run the stages.
-#[derive(Clone)]
-pub enum Backend {
-    /// The offline rule-based designers and measurement-based critics.
-    Builtin,
-    /// An OpenAI-compatible chat model for every role.
-    Llm {
-        /// Shared transport (HTTP or replay).
-        transport: SharedTransport,
-        /// Model settings.
-        config: LlmConfig,
-    },
-}
-
-impl Backend {
-    /// Name recorded in `scene.json`.
-    pub fn name(&self) -> String {
-        match self {
-            Backend::Builtin => "builtin".into(),
-            Backend::Llm { config, .. } => format!("llm:{}", config.model),
-        }
-    }
-}
-
-/// What a stage kept, for the run summary.
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct StageSummary {
-    /// Stage name.
-    pub stage: String,
-    /// Room.
-    pub room: String,
-    /// Supporting entity (manipuland stage).
-    pub entity: Option<String>,
-    /// Scores of the kept checkpoint.
-    pub critique: Option<Critique>,
-    /// Critique rounds run.
-    pub rounds: usize,
-    /// Wall time of the stage (agents and tools), seconds; not written to `scene.json`.
-    pub seconds: f64,
-}
+use crate::state::SceneState;
 
 fn stage_config(kind: StageKind) -> StageConfig {
     match kind {
@@ -323,7 +283,7 @@ fn split_plans(
         let mut hosts: Vec<&(String, String)> = furniture
             .iter()
             .filter(|(_, cat)| {
-                group.parent == "any" || super::StageState::names(&group.parent, cat)
+                group.parent == "any" || crate::assets::router::naming::names(&group.parent, cat)
             })
             .collect();
         let own_kind = !hosts.is_empty();

@@ -9,13 +9,13 @@ use serde_json::json;
 
 use super::common::{self, ObjectInfo, object_info};
 use super::placement::Footprint;
-use super::plan::Arrangement;
 use super::room::{RoomFrame, wall_side};
 use super::{RoutedAsset, StageState};
 use crate::agents::{
     Access, AgentCx, AgentError, CategorySpec, Critic, Critique, DesignRequest, Designer, Issue,
     Role, Score, ToolError, Toolbox,
 };
+use crate::plan::Arrangement;
 use crate::scene::{ObjectKind, Pose, Support, Wall};
 
 /// The wall stage's critic categories.
@@ -354,7 +354,10 @@ pub fn toolbox() -> Toolbox<StageState> {
 fn targets(state: &StageState, noun: &str) -> Vec<String> {
     state
         .room_objects()
-        .filter(|o| StageState::is(&state.scene.scene, noun, o) && o.kind == ObjectKind::Furniture)
+        .filter(|o| {
+            crate::assets::router::naming::object_is(&state.scene.scene, noun, o)
+                && o.kind == ObjectKind::Furniture
+        })
         .map(|o| o.id.clone())
         .collect()
 }
@@ -420,7 +423,7 @@ pub struct BuiltinWallCritic;
 
 fn requested_score(
     state: &StageState,
-    wants: &[super::plan::Want],
+    wants: &[crate::plan::Want],
     issues: &mut Vec<Issue>,
 ) -> (f64, String) {
     let (mut wanted, mut got) = (0u32, 0u32);
@@ -598,7 +601,7 @@ impl Critic<StageState> for BuiltinWallCritic {
 pub(crate) fn requested_and_collisions(
     state: &mut StageState,
     cx: &mut AgentCx<'_, StageState>,
-    wants: &[super::plan::Want],
+    wants: &[crate::plan::Want],
     kind: ObjectKind,
     issues: &mut Vec<Issue>,
 ) -> Result<(Score, Score), AgentError> {

@@ -15,7 +15,7 @@ use scenesmith::physics::protocol::{
 };
 use scenesmith::pipeline::build_scene;
 use scenesmith::scene::{ObjectKind, Pose, SceneObject, Support};
-use scenesmith::stages::SceneState;
+use scenesmith::state::SceneState;
 use serde_json::json;
 
 /// A test asset with a drawer sliding along -Y (limits [-0.25, 0]: opening is negative) and a
@@ -82,7 +82,7 @@ pub fn articulated_state() -> SceneState {
         "A bedroom with a cabinet",
         3,
         "export_joints",
-        &scenesmith::stages::run::Backend::Builtin,
+        &scenesmith::agents::Backend::Builtin,
     )
     .unwrap();
     let cabinet = state

@@ -14,7 +14,7 @@ use scenesmith::layout::{architecture, rectangle_walls};
 use scenesmith::physics::collision::{penetrating_pairs, posed_objects};
 use scenesmith::physics::{BridgeConfig, BridgePool};
 use scenesmith::scene::{ObjectKind, Pose, Room, Scene, SceneObject, Support, SurfaceRecord};
-use scenesmith::stages::SceneState;
+use scenesmith::state::SceneState;
 
 /// Shapes of test blocks; every block has its bottom at z = 0 and a `top` surface.
 #[derive(Debug, Clone, Copy)]

@@ -22,7 +22,7 @@ pub fn self_collisions(
     joint_positions: &BTreeMap<String, f64>,
     tolerance: f64,
 ) -> Vec<(String, String, f64)> {
-    use crate::physics::collision::{PosedPiece, sat_penetration};
+    use crate::geometry::penetration::{PosedPiece, sat_penetration};
     let poses = link_poses(asset, joint_positions);
     // Pose every piece once, then test pairs (the bounds test inside prunes most of them).
     let posed: Vec<Vec<PosedPiece>> = asset

@@ -29,6 +29,7 @@
 //! job (`Routed` says how many of each and how the parts relate).
 
 mod build;
+pub mod naming;
 pub mod parse;
 
 use std::sync::Arc;

@@ -26,7 +26,7 @@ use crate::assets::JointKind;
 use crate::geometry::mesh::bounds_of;
 use crate::physics::protocol::{Aabb, Op, UsdFinding};
 use crate::physics::{Bridge, BridgeError};
-use crate::stages::SceneState;
+use crate::state::SceneState;
 
 /// STB: a free object is stable when it moves less than this in the run, metres.
 pub const STB_MAX_DISPLACEMENT_M: f64 = 0.01;

@@ -36,8 +36,8 @@ pub(super) fn render_plan_image(
     _: NoArgs,
 ) -> Result<ImageObservation, ToolError> {
     let (rooms, _) = s.rooms();
-    let png = crate::layout::stage::plan_png(&s.prompt, s.seed, &rooms)
-        .map_err(|e| fail(e.to_string()))?;
+    let png =
+        crate::render::plan_png(&s.prompt, s.seed, &rooms).map_err(|e| fail(e.to_string()))?;
     Ok(ImageObservation::new(
         format!(
             "top-down plan of {} rooms: names, sizes and materials, walls, doors with their \

@@ -9,6 +9,7 @@ use super::{
     covers, fill_factor, is_seat, is_table_like, one_per_parent, pick, place_to_arrangement,
     split_counts,
 };
+use crate::assets::router::naming::footprint;
 use crate::knowledge::{KbItem, Place};
 use crate::prompt::{Density, Mention, Support};
 
@@ -169,8 +170,7 @@ impl Builder<'_> {
         let lists_furniture = explicit_floor >= 3;
         let lex = self.lex;
         let small_piece = |noun: &str| {
-            lex.lookup(noun).is_some_and(|e| e.thin)
-                || super::super::clutter::footprint(noun) <= SMALL_PIECE_M2
+            lex.lookup(noun).is_some_and(|e| e.thin) || footprint(noun) <= SMALL_PIECE_M2
         };
         let scale = self
             .reading

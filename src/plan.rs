@@ -18,6 +18,8 @@ use serde::{Deserialize, Serialize};
 
 mod defaults;
 mod explicit;
+#[cfg(test)]
+mod robustness;
 
 use crate::knowledge::{self, Knowledge, Place, RoomType};
 use crate::prompt::{self, Density, Lexicon, Reading, Support};
@@ -503,6 +505,17 @@ mod tests {
         plan.all_wants()
             .find(|w| w.noun == noun)
             .unwrap_or_else(|| panic!("no {noun} in {plan:#?}"))
+    }
+
+    /// Counts that saturate in the reading (4000000000 desks) stay bounded in the plan.
+    #[test]
+    fn huge_numbers_stay_bounded() {
+        let r = prompt::read(
+            "A hall with 4000000000 desks, each with 4000000000 chairs, and 4000000000 pairs of \
+             shoes.",
+        );
+        let plans = plan_rooms(&r);
+        assert!(plans[0].all_wants().all(|w| w.count <= 120));
     }
 
     #[test]

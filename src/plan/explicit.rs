@@ -444,7 +444,7 @@ impl Builder<'_> {
 /// Whether the library builds the same category for both nouns ("teddy bear" and "stuffed
 /// animal" are both stuffed animals).
 fn same_build(a: &str, b: &str) -> bool {
-    let of = crate::stages::StageState::category_of;
+    let of = crate::assets::router::naming::category_of;
     of(a).is_some_and(|c| of(b) == Some(c))
 }
 
