@@ -2,6 +2,8 @@
 //! every critique becomes a checkpoint; a regression rolls back; the stage keeps its best
 //! checkpoint.
 
+use std::ops::ControlFlow;
+
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 use serde_json::json;
@@ -228,39 +230,26 @@ pub fn run_stage<S: Clone>(
     designer.reset();
     critic.reset();
     orchestrator.reset();
-    let mut current = initial;
-    let mut checkpoints: Vec<Checkpoint<S>> = Vec::new();
-    let mut baseline: Option<usize> = None;
-    let mut has_design = false;
-    let mut changed = false;
-    let mut rolled_back: Option<String> = None;
-    let mut style = PlacementStyle::default();
-    let mut attempt = 0u32;
-    let stage = spec.name.to_string();
-
+    let mut agents = Agents {
+        designer,
+        critic,
+        orchestrator,
+    };
+    let mut run = StageLoop::new(spec.name, initial);
     for _ in 0..config.max_decisions {
-        let view = LoopView {
-            stage: stage.clone(),
-            has_design,
-            changed_since_critique: changed,
-            rounds: checkpoints.len(),
-            last: checkpoints.last().map(|c| c.critique.clone()),
-            baseline: baseline.map(|i| checkpoints[i].critique.clone()),
-            rolled_back: rolled_back.clone(),
-            style,
-            config: config.clone(),
-            checkpoints: checkpoints.len(),
-        };
-        let decision = match orchestrator.decide(&view) {
+        let decision = match agents.orchestrator.decide(&run.view(config)) {
             Ok(d) => d,
-            Err(e) if !checkpoints.is_empty() => {
-                tracing::warn!("orchestrator of {stage} failed ({e}); keeping the best checkpoint");
+            Err(e) if !run.checkpoints.is_empty() => {
+                tracing::warn!(
+                    "orchestrator of {} failed ({e}); keeping the best checkpoint",
+                    run.stage
+                );
                 break;
             }
             Err(e) => return Err(e),
         };
         log.events.push(LogEvent::Decision {
-            stage: stage.clone(),
+            stage: run.stage.clone(),
             decision: serde_json::to_value(&decision).unwrap_or(json!(null)),
         });
         let mut cx = AgentCx {
@@ -268,139 +257,246 @@ pub fn run_stage<S: Clone>(
             toolbox: spec.toolbox,
             categories: spec.categories,
             brief: spec.brief,
-            style,
-            attempt,
+            style: run.style,
+            attempt: run.attempt,
             log,
         };
+        if run
+            .apply(decision, &mut agents, &mut cx, config)?
+            .is_break()
+        {
+            break;
+        }
+    }
+    Ok(run.finish(log))
+}
+
+/// The three agents of a stage.
+struct Agents<'a, S> {
+    designer: &'a mut dyn Designer<S>,
+    critic: &'a mut dyn Critic<S>,
+    orchestrator: &'a mut dyn Orchestrator,
+}
+
+/// The stage loop between decisions: the working state and the checkpoints taken so far.
+struct StageLoop<S> {
+    stage: String,
+    current: S,
+    checkpoints: Vec<Checkpoint<S>>,
+    /// The checkpoint `current` derives from: critiques are judged against it.
+    baseline: Option<usize>,
+    has_design: bool,
+    changed: bool,
+    /// Set by a rollback until the next design change, which is told why.
+    rolled_back: Option<String>,
+    style: PlacementStyle,
+    attempt: u32,
+}
+
+impl<S: Clone> StageLoop<S> {
+    fn new(stage: &str, initial: S) -> Self {
+        StageLoop {
+            stage: stage.to_string(),
+            current: initial,
+            checkpoints: Vec::new(),
+            baseline: None,
+            has_design: false,
+            changed: false,
+            rolled_back: None,
+            style: PlacementStyle::default(),
+            attempt: 0,
+        }
+    }
+
+    fn view(&self, config: &StageConfig) -> LoopView {
+        LoopView {
+            stage: self.stage.clone(),
+            has_design: self.has_design,
+            changed_since_critique: self.changed,
+            rounds: self.checkpoints.len(),
+            last: self.checkpoints.last().map(|c| c.critique.clone()),
+            baseline: self.baseline.map(|i| self.checkpoints[i].critique.clone()),
+            rolled_back: self.rolled_back.clone(),
+            style: self.style,
+            config: config.clone(),
+            checkpoints: self.checkpoints.len(),
+        }
+    }
+
+    /// Carries out one decision, or tells the orchestrator why it cannot; breaks on `Finish`.
+    fn apply(
+        &mut self,
+        decision: Decision,
+        agents: &mut Agents<'_, S>,
+        cx: &mut AgentCx<'_, S>,
+        config: &StageConfig,
+    ) -> Result<ControlFlow<()>, AgentError> {
         match decision {
-            Decision::RequestInitialDesign {} if has_design => {
-                orchestrator.rejected(
+            Decision::RequestInitialDesign {} if self.has_design => {
+                agents.orchestrator.rejected(
                     &decision,
                     "a design exists; request a design change instead",
                 );
             }
             Decision::RequestInitialDesign {} => {
-                designer.design(&mut current, &DesignRequest::Initial, &mut cx)?;
-                has_design = true;
-                changed = true;
-                attempt += 1;
+                self.design(agents.designer, &DesignRequest::Initial, cx)?;
             }
-            Decision::RequestDesignChange { .. } if !has_design => {
-                orchestrator.rejected(
+            Decision::RequestDesignChange { .. } if !self.has_design => {
+                agents.orchestrator.rejected(
                     &decision,
                     "there is no design yet; request the initial design",
                 );
             }
             Decision::RequestDesignChange { instruction } => {
-                let request = match rolled_back.take() {
+                let request = match self.rolled_back.take() {
                     Some(reason) => DesignRequest::AfterRollback {
                         reason,
                         instruction,
                     },
                     None => DesignRequest::Change { instruction },
                 };
-                designer.design(&mut current, &request, &mut cx)?;
-                changed = true;
-                attempt += 1;
+                self.design(agents.designer, &request, cx)?;
             }
-            Decision::RequestCritique {} if !has_design => {
-                orchestrator.rejected(&decision, "there is no design to critique yet");
+            Decision::RequestCritique {} if !self.has_design => {
+                agents
+                    .orchestrator
+                    .rejected(&decision, "there is no design to critique yet");
             }
-            Decision::RequestCritique {} => {
-                let critique = critic.critique(&mut current, &mut cx)?;
-                let previous = baseline.map(|i| checkpoints[i].critique.clone());
-                let index = checkpoints.len();
-                log.events.push(LogEvent::Checkpoint {
-                    stage: stage.clone(),
-                    index,
-                    total: critique.total(),
-                    critique: critique.clone(),
-                });
-                let regression = previous.as_ref().and_then(|p| {
-                    critique.regression_from(
-                        p,
-                        config.rollback_category_drop,
-                        config.rollback_sum_drop,
-                    )
-                });
-                checkpoints.push(Checkpoint {
-                    state: current.clone(),
-                    critique: critique.clone(),
-                    previous: previous.clone(),
-                    regressed: regression.is_some() && baseline.is_some(),
-                });
-                changed = false;
-                match (regression, baseline) {
-                    (Some(reason), Some(back)) => {
-                        current = checkpoints[back].state.clone();
-                        log.events.push(LogEvent::Rollback {
-                            stage: stage.clone(),
-                            to: back,
-                            reason: reason.clone(),
-                        });
-                        rolled_back = Some(reason);
-                    }
-                    _ => baseline = Some(index),
-                }
-            }
+            Decision::RequestCritique {} => self.critique(agents.critic, cx, config)?,
             Decision::ResetSceneToCheckpoint { reason, checkpoint } => {
-                let target = checkpoint.or(baseline).filter(|i| *i < checkpoints.len());
-                match target {
-                    Some(i) => {
-                        current = checkpoints[i].state.clone();
-                        baseline = Some(i);
-                        changed = false;
-                        log.events.push(LogEvent::Rollback {
-                            stage: stage.clone(),
-                            to: i,
-                            reason: reason.clone(),
-                        });
-                        rolled_back = Some(reason);
-                    }
-                    None => orchestrator.rejected(
-                        &Decision::ResetSceneToCheckpoint { reason, checkpoint },
-                        &format!("no such checkpoint; there are {}", checkpoints.len()),
-                    ),
-                }
+                self.reset_to(reason, checkpoint, agents.orchestrator, cx.log);
             }
-            Decision::SelectPlacementStyle { style: s } => style = s,
-            Decision::Finish { .. } => break,
+            Decision::SelectPlacementStyle { style } => self.style = style,
+            Decision::Finish { .. } => return Ok(ControlFlow::Break(())),
+        }
+        Ok(ControlFlow::Continue(()))
+    }
+
+    fn design(
+        &mut self,
+        designer: &mut dyn Designer<S>,
+        request: &DesignRequest,
+        cx: &mut AgentCx<'_, S>,
+    ) -> Result<(), AgentError> {
+        designer.design(&mut self.current, request, cx)?;
+        self.has_design = true;
+        self.changed = true;
+        self.attempt += 1;
+        Ok(())
+    }
+
+    /// Critiques the current state into a new checkpoint; rolls back to the baseline when the
+    /// critique regressed from it, else makes it the baseline.
+    fn critique(
+        &mut self,
+        critic: &mut dyn Critic<S>,
+        cx: &mut AgentCx<'_, S>,
+        config: &StageConfig,
+    ) -> Result<(), AgentError> {
+        let critique = critic.critique(&mut self.current, cx)?;
+        let previous = self.baseline.map(|i| self.checkpoints[i].critique.clone());
+        let index = self.checkpoints.len();
+        cx.log.events.push(LogEvent::Checkpoint {
+            stage: self.stage.clone(),
+            index,
+            total: critique.total(),
+            critique: critique.clone(),
+        });
+        let regression = previous.as_ref().and_then(|p| {
+            critique.regression_from(p, config.rollback_category_drop, config.rollback_sum_drop)
+        });
+        self.checkpoints.push(Checkpoint {
+            state: self.current.clone(),
+            critique: critique.clone(),
+            previous: previous.clone(),
+            regressed: regression.is_some() && self.baseline.is_some(),
+        });
+        self.changed = false;
+        match (regression, self.baseline) {
+            (Some(reason), Some(back)) => {
+                self.current = self.checkpoints[back].state.clone();
+                cx.log.events.push(LogEvent::Rollback {
+                    stage: self.stage.clone(),
+                    to: back,
+                    reason: reason.clone(),
+                });
+                self.rolled_back = Some(reason);
+            }
+            _ => self.baseline = Some(index),
+        }
+        Ok(())
+    }
+
+    /// Restores `checkpoint` (the baseline when `None`) as the orchestrator asked.
+    fn reset_to(
+        &mut self,
+        reason: String,
+        checkpoint: Option<usize>,
+        orchestrator: &mut dyn Orchestrator,
+        log: &mut RunLog,
+    ) {
+        let target = checkpoint
+            .or(self.baseline)
+            .filter(|i| *i < self.checkpoints.len());
+        match target {
+            Some(i) => {
+                self.current = self.checkpoints[i].state.clone();
+                self.baseline = Some(i);
+                self.changed = false;
+                log.events.push(LogEvent::Rollback {
+                    stage: self.stage.clone(),
+                    to: i,
+                    reason: reason.clone(),
+                });
+                self.rolled_back = Some(reason);
+            }
+            None => orchestrator.rejected(
+                &Decision::ResetSceneToCheckpoint { reason, checkpoint },
+                &format!("no such checkpoint; there are {}", self.checkpoints.len()),
+            ),
         }
     }
 
-    // The kept result: the best critiqued checkpoint that was not rolled back from (latest on
-    // ties); a state that was never critiqued only when there is no checkpoint at all. The
-    // first checkpoint never regresses, so there is always a candidate.
-    let kept = checkpoints
-        .iter()
-        .enumerate()
-        .filter(|(_, c)| !c.regressed)
-        .max_by_key(|(i, c)| (c.critique.total(), *i))
-        .map(|(i, _)| i);
-    log.events.push(LogEvent::StageEnd {
-        stage: stage.clone(),
-        kept,
-        total: kept.map(|i| checkpoints[i].critique.total()),
-        rounds: checkpoints.len(),
-    });
-    let history = checkpoints.iter().map(|c| c.critique.clone()).collect();
-    Ok(match kept {
-        Some(i) => {
-            let c = checkpoints.swap_remove(i);
-            StageOutcome {
-                state: c.state,
-                critique: Some(c.critique),
-                history,
-                kept,
+    /// The kept result: the best critiqued checkpoint that was not rolled back from (latest on
+    /// ties); a state that was never critiqued only when there is no checkpoint at all. The
+    /// first checkpoint never regresses, so there is always a candidate.
+    fn finish(mut self, log: &mut RunLog) -> StageOutcome<S> {
+        let kept = self
+            .checkpoints
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| !c.regressed)
+            .max_by_key(|(i, c)| (c.critique.total(), *i))
+            .map(|(i, _)| i);
+        log.events.push(LogEvent::StageEnd {
+            stage: self.stage.clone(),
+            kept,
+            total: kept.map(|i| self.checkpoints[i].critique.total()),
+            rounds: self.checkpoints.len(),
+        });
+        let history = self
+            .checkpoints
+            .iter()
+            .map(|c| c.critique.clone())
+            .collect();
+        match kept {
+            Some(i) => {
+                let c = self.checkpoints.swap_remove(i);
+                StageOutcome {
+                    state: c.state,
+                    critique: Some(c.critique),
+                    history,
+                    kept,
+                }
             }
+            None => StageOutcome {
+                state: self.current,
+                critique: None,
+                history,
+                kept: None,
+            },
         }
-        None => StageOutcome {
-            state: current,
-            critique: None,
-            history,
-            kept: None,
-        },
-    })
+    }
 }
 
 #[cfg(test)]

@@ -25,15 +25,15 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::time::{Duration, Instant};
 
-use clarabel::algebra::CscMatrix;
-use clarabel::solver::{
-    DefaultSettingsBuilder, DefaultSolver, IPSolver, NonnegativeConeT, SolverStatus,
-};
 use nalgebra::{Point3, Vector3};
 use parry3d_f64::math::{Pose as PPose, Vector as PVec};
 use parry3d_f64::shape::ConvexPolyhedron;
 use rayon::prelude::*;
 use serde::Serialize;
+
+mod qp;
+
+use qp::qp_step;
 
 use super::PhysicsError;
 use super::as_written::posed_objects;
@@ -551,193 +551,6 @@ fn max_depth(m: &Measured) -> f64 {
         .chain(m.below_floor.values())
         .copied()
         .fold(0.0, f64::max)
-}
-
-/// One QP step: returns per-body step offsets (zero for fixed bodies), or `None` when the
-/// solver failed.
-fn qp_step(
-    bodies: &[Body],
-    offsets: &[Vector3<f64>],
-    rows: &[Row],
-    opts: &ProjectionOptions,
-    trust: f64,
-) -> Option<Vec<Vector3<f64>>> {
-    let var_of: Vec<Option<usize>> = {
-        let mut k = 0;
-        bodies
-            .iter()
-            .map(|b| {
-                b.movable.then(|| {
-                    k += 1;
-                    k - 1
-                })
-            })
-            .collect()
-    };
-    let nb = var_of.iter().flatten().count();
-    let region_rows: Vec<(usize, [f64; 3])> = bodies
-        .iter()
-        .enumerate()
-        .filter(|(_, b)| b.movable)
-        .flat_map(|(i, b)| {
-            opts.regions
-                .get(&b.id)
-                .map(|r| {
-                    r.halfplanes
-                        .iter()
-                        .map(move |h| (i, *h))
-                        .collect::<Vec<_>>()
-                })
-                .unwrap_or_default()
-        })
-        .collect();
-    let ns = rows.len() + region_rows.len();
-    let n = 3 * nb + ns;
-    // Cost: sum ||offset + step||^2 + w * slack.
-    let mut p_i = Vec::new();
-    let mut q = vec![0.0; n];
-    for (i, v) in var_of.iter().enumerate() {
-        if let Some(v) = v {
-            for k in 0..3 {
-                p_i.push(3 * v + k);
-                q[3 * v + k] = 2.0 * offsets[i][k];
-            }
-        }
-    }
-    let slack_weight = 1e3;
-    for s in 0..ns {
-        q[3 * nb + s] = slack_weight;
-    }
-    let p = CscMatrix::new_from_triplets(n, n, p_i.clone(), p_i, vec![2.0; 3 * nb]);
-
-    // Constraints G x <= h.
-    let (mut ai, mut aj, mut av, mut h) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let mut row = 0;
-    let mut push = |entries: &[(usize, f64)],
-                    rhs: f64,
-                    ai: &mut Vec<usize>,
-                    aj: &mut Vec<usize>,
-                    av: &mut Vec<f64>,
-                    h: &mut Vec<f64>| {
-        for &(col, val) in entries {
-            if val != 0.0 {
-                ai.push(row);
-                aj.push(col);
-                av.push(val);
-            }
-        }
-        h.push(rhs);
-        row += 1;
-    };
-    // Contact rows: d + n.(s_b - s_a) + slack >= target.
-    for (s, r) in rows.iter().enumerate() {
-        let mut e: Vec<(usize, f64)> = Vec::with_capacity(7);
-        if let Some(va) = var_of[r.a] {
-            for k in 0..3 {
-                e.push((3 * va + k, r.n[k]));
-            }
-        }
-        if let Some(vb) = var_of[r.b] {
-            for k in 0..3 {
-                e.push((3 * vb + k, -r.n[k]));
-            }
-        }
-        e.push((3 * nb + s, -1.0));
-        push(&e, r.d - r.target, &mut ai, &mut aj, &mut av, &mut h);
-    }
-    // Region rows: a.(p + offset + step) - slack <= c.
-    for (s, (i, hp)) in region_rows.iter().enumerate() {
-        let Some(v) = var_of[*i] else { continue };
-        let cur = bodies[*i].origin0 + offsets[*i];
-        let e = [
-            (3 * v, hp[0]),
-            (3 * v + 1, hp[1]),
-            (3 * nb + rows.len() + s, -1.0),
-        ];
-        push(
-            &e,
-            hp[2] - hp[0] * cur.x - hp[1] * cur.y,
-            &mut ai,
-            &mut aj,
-            &mut av,
-            &mut h,
-        );
-    }
-    // Slack >= 0.
-    for s in 0..ns {
-        push(
-            &[(3 * nb + s, -1.0)],
-            0.0,
-            &mut ai,
-            &mut aj,
-            &mut av,
-            &mut h,
-        );
-    }
-    // Trust region and floor bound.
-    for (i, b) in bodies.iter().enumerate() {
-        let Some(v) = var_of[i] else { continue };
-        let lift = match opts.floor_z {
-            Some(fz) => fz - (b.lo0.z + offsets[i].z),
-            None => f64::NEG_INFINITY,
-        };
-        for k in 0..3 {
-            let (mut lo, mut hi) = (-trust, trust);
-            if k == 2 {
-                if opts.xy_only {
-                    lo = lift.max(0.0);
-                    hi = lo;
-                } else {
-                    lo = lo.max(lift);
-                    hi = hi.max(lift);
-                }
-            }
-            push(&[(3 * v + k, 1.0)], hi, &mut ai, &mut aj, &mut av, &mut h);
-            push(&[(3 * v + k, -1.0)], -lo, &mut ai, &mut aj, &mut av, &mut h);
-        }
-    }
-    let m = h.len();
-    let a = CscMatrix::new_from_triplets(m, n, ai, aj, av);
-    let cones = [NonnegativeConeT(m)];
-    let settings = DefaultSettingsBuilder::default()
-        .verbose(false)
-        .max_iter(200)
-        .build()
-        .ok()?;
-    let mut solver = DefaultSolver::new(&p, &q, &a, &h, &cones, settings).ok()?;
-    solver.solve();
-    if !matches!(
-        solver.solution.status,
-        SolverStatus::Solved | SolverStatus::AlmostSolved
-    ) {
-        return None;
-    }
-    let x = &solver.solution.x;
-    // A body no row mentions has its exact optimum at its start: return it there, rather than
-    // keep the interior-point method's last-digit noise.
-    let mut constrained = vec![false; bodies.len()];
-    for r in rows {
-        constrained[r.a] = true;
-        constrained[r.b] = true;
-    }
-    for (i, _) in &region_rows {
-        constrained[*i] = true;
-    }
-    Some(
-        var_of
-            .iter()
-            .enumerate()
-            .map(|(i, v)| match v {
-                Some(_)
-                    if !constrained[i] && opts.floor_z.is_none_or(|fz| bodies[i].lo0.z >= fz) =>
-                {
-                    -offsets[i]
-                }
-                Some(v) => Vector3::new(x[3 * v], x[3 * v + 1], x[3 * v + 2]),
-                None => Vector3::zeros(),
-            })
-            .collect(),
-    )
 }
 
 /// Fallback step when a QP fails: push each penetrating pair apart along its normal.

@@ -124,20 +124,9 @@ pub(crate) fn word(tokens: &[Token], i: usize) -> Option<&str> {
 
 pub(crate) fn pronoun_np(p: Pronoun) -> Np {
     Np {
-        det: None,
-        quant: None,
-        number: None,
-        plus: false,
-        ordinal: None,
-        group: None,
-        group_suffix: false,
-        negated: false,
-        other: false,
-        attrs: Attributes::default(),
         head: Head::Pronoun(p),
         plural: matches!(p, Pronoun::Them | Pronoun::EachOther),
-        one_word: false,
-        report: None,
+        ..blank_np()
     }
 }
 
@@ -194,7 +183,40 @@ pub(crate) fn parse_np(
     sentence_start: usize,
     in_list: bool,
 ) -> Option<(Np, usize)> {
-    let mut np = Np {
+    let phrase = Phrase {
+        lex,
+        kb,
+        tokens,
+        start: i,
+        end,
+        sentence_start,
+        in_list,
+    };
+    let mut np = blank_np();
+    let j = phrase.read_counts(&mut np);
+    if let Some(pronoun) = phrase.subject_pronoun(&np, j) {
+        np.head = Head::Pronoun(pronoun);
+        return Some((np, j));
+    }
+    let j = phrase.read_group(&mut np, j);
+    let (which, j) = phrase.read_part_position(&np, j);
+    let mods_from = j;
+    let j = phrase.read_modifiers(&mut np, j);
+    let evidence =
+        np.has_det() || np.ordinal.is_some() || !np.attrs.modifiers.is_empty() || np.negated;
+    let before = BeforeHead {
+        j,
+        mods_from,
+        which,
+        evidence,
+    };
+    let next = phrase.read_head(&mut np, &before)?;
+    Some((np, next))
+}
+
+/// A phrase with no words read yet.
+fn blank_np() -> Np {
+    Np {
         det: None,
         quant: None,
         number: None,
@@ -209,102 +231,166 @@ pub(crate) fn parse_np(
         plural: false,
         one_word: false,
         report: None,
-    };
-    let mut j = i;
-    let at = |j: usize| if j < end { word(tokens, j) } else { None };
-    if matches!(at(j), Some("no" | "not")) {
-        np.negated = true;
-        j += 1;
     }
-    // Quantifier, determiner, quantifier again, number, ordinal — in any sensible order.
-    for _ in 0..4 {
-        if j >= end {
+}
+
+/// The tokens a noun phrase is read from, and where it may start and end.
+struct Phrase<'a> {
+    lex: &'a Lexicon,
+    kb: &'a Knowledge,
+    tokens: &'a [Token],
+    /// First token of the phrase.
+    start: usize,
+    /// The phrase ends before this token.
+    end: usize,
+    sentence_start: usize,
+    /// The phrase is an item of a list: it presents a thing even when bare.
+    in_list: bool,
+}
+
+/// Where the head of a phrase starts, and what came before it.
+struct BeforeHead {
+    /// First token of the head.
+    j: usize,
+    /// First modifier (names keep the modifiers written with them).
+    mods_from: usize,
+    /// "top", "bottom", "other", ... before a part noun.
+    which: Option<String>,
+    /// A determiner, count, ordinal, modifier or "no" presents the head as a thing.
+    evidence: bool,
+}
+
+/// A lexicon noun in the tokens: `len` tokens from `start`.
+#[derive(Clone, Copy)]
+struct NounAt {
+    start: usize,
+    len: usize,
+    entry: usize,
+    plural: bool,
+}
+
+impl<'a> Phrase<'a> {
+    /// The word at `j`, `None` past the phrase's end or at punctuation.
+    fn at(&self, j: usize) -> Option<&'a str> {
+        if j < self.end {
+            word(self.tokens, j)
+        } else {
+            None
+        }
+    }
+
+    /// "no"/"not", then quantifier, determiner, quantifier again, number, ordinal — in any
+    /// sensible order; returns the index after them.
+    fn read_counts(&self, np: &mut Np) -> usize {
+        let (lex, tokens) = (self.lex, self.tokens);
+        let mut j = self.start;
+        if matches!(self.at(j), Some("no" | "not")) {
+            np.negated = true;
+            j += 1;
+        }
+        for _ in 0..4 {
+            if j >= self.end {
+                break;
+            }
+            if np.quant.is_none()
+                && let Some((n, class)) = lex.quantifier_at(tokens, j)
+                && quantifier_fits(lex, tokens, j)
+            {
+                np.quant = Some(class.to_string());
+                j += n;
+                continue;
+            }
+            if let Some(w) = self.at(j)
+                && np.det.is_none()
+                && np.number.is_none()
+                && let Some(class) = lex.determiner(w)
+            {
+                j = self.read_determiner(np, j, w, class);
+                continue;
+            }
+            if np.number.is_none()
+                && let Some(t) = tokens.get(j)
+                && let Some(n) = lex.number(t)
+            {
+                np.one_word = t.text == "one";
+                np.number = Some(n);
+                j += 1;
+                if tokens.get(j).is_some_and(|t| t.is_punct('+')) {
+                    np.plus = true;
+                    j += 1;
+                }
+                continue;
+            }
+            if let Some(w) = self.at(j)
+                && np.ordinal.is_none()
+                && let Some(o) = lex.ordinal(w)
+            {
+                np.ordinal = Some(o);
+                j += 1;
+                continue;
+            }
             break;
         }
-        if np.quant.is_none()
-            && let Some((n, class)) = lex.quantifier_at(tokens, j)
-            && quantifier_fits(lex, tokens, j)
-        {
-            np.quant = Some(class.to_string());
-            j += n;
-            continue;
-        }
-        if let Some(w) = at(j)
-            && np.det.is_none()
-            && np.number.is_none()
-            && let Some(class) = lex.determiner(w)
-        {
-            // "each" followed by nothing nounish is not a determiner here.
-            if class == "other" || class == "another" {
-                np.other = true;
-            }
-            np.det = Some(if class == "other" {
-                "definite".to_string()
-            } else {
-                class.to_string()
-            });
-            j += 1;
-            if w == "the" && at(j) == Some("other") {
-                np.other = true;
-                j += 1;
-            }
-            continue;
-        }
-        if np.number.is_none()
-            && let Some(t) = tokens.get(j)
-            && let Some(n) = lex.number(t)
-        {
-            np.one_word = t.text == "one";
-            np.number = Some(n);
-            j += 1;
-            if tokens.get(j).is_some_and(|t| t.is_punct('+')) {
-                np.plus = true;
-                j += 1;
-            }
-            continue;
-        }
-        if let Some(w) = at(j)
-            && np.ordinal.is_none()
-            && let Some(o) = lex.ordinal(w)
-        {
-            np.ordinal = Some(o);
-            j += 1;
-            continue;
-        }
-        break;
+        j
     }
-    // "one" as a subject pronoun: "where one displays ..., the other displays ...".
-    if let Some(w) = at(j)
-        && (np.one_word || (np.other && np.number.is_none()))
-        && lex.verb(w).is_some()
-        && lex.noun_at(tokens, j).is_none()
-    {
-        np.head = Head::Pronoun(if np.one_word {
+
+    /// The determiner `w` of class `class` at `j`; returns the index after it.
+    fn read_determiner(&self, np: &mut Np, mut j: usize, w: &str, class: &str) -> usize {
+        // "each" followed by nothing nounish is not a determiner here.
+        if class == "other" || class == "another" {
+            np.other = true;
+        }
+        np.det = Some(if class == "other" {
+            "definite".to_string()
+        } else {
+            class.to_string()
+        });
+        j += 1;
+        if w == "the" && self.at(j) == Some("other") {
+            np.other = true;
+            j += 1;
+        }
+        j
+    }
+
+    /// "one" or "the other" as a subject: "where one displays ..., the other displays ...".
+    fn subject_pronoun(&self, np: &Np, j: usize) -> Option<Pronoun> {
+        let w = self.at(j)?;
+        let subject = (np.one_word || (np.other && np.number.is_none()))
+            && self.lex.verb(w).is_some()
+            && self.lex.noun_at(self.tokens, j).is_none();
+        subject.then_some(if np.one_word {
             Pronoun::One
         } else {
             Pronoun::Other
-        });
-        return Some((np, j));
+        })
     }
-    // Group words: "a stack of", "pairs of"; and any word the lexicon does not know as an
-    // object before "of" and a plural noun ("a tangle of cables", "an array of candles"):
-    // the things are the plural noun, the word says how they lie.
-    let partitive = |w: &str| {
-        lex.noun_at(tokens, j).is_none()
-            && !lex.is_function_word(w)
-            && lex.quantifier_at(tokens, j).is_none()
-            && ground::is_noun(w)
-            && word(tokens, j + 2).is_some_and(|x| {
-                lex.is_plural(x) && (lex.noun_at(tokens, j + 2).is_some() || ground::is_noun(x))
+
+    /// Group words: "a stack of", "pairs of"; and any word the lexicon does not know as an
+    /// object before "of" and a plural noun ("a tangle of cables", "an array of candles"):
+    /// the things are the plural noun, the word says how they lie. Returns the index after.
+    fn read_group(&self, np: &mut Np, mut j: usize) -> usize {
+        let (lex, tokens) = (self.lex, self.tokens);
+        let partitive = |w: &str| {
+            lex.noun_at(tokens, j).is_none()
+                && !lex.is_function_word(w)
+                && lex.quantifier_at(tokens, j).is_none()
+                && ground::is_noun(w)
+                && word(tokens, j + 2).is_some_and(|x| {
+                    lex.is_plural(x) && (lex.noun_at(tokens, j + 2).is_some() || ground::is_noun(x))
+                })
+        };
+        let Some(kind) = self
+            .at(j)
+            .filter(|_| self.at(j + 1) == Some("of"))
+            .and_then(|w| {
+                lex.group(w)
+                    .and_then(GroupKind::from_class)
+                    .or_else(|| partitive(w).then_some(GroupKind::Pile))
             })
-    };
-    if let Some(w) = at(j)
-        && at(j + 1) == Some("of")
-        && let Some(kind) = lex
-            .group(w)
-            .and_then(GroupKind::from_class)
-            .or_else(|| partitive(w).then_some(GroupKind::Pile))
-    {
+        else {
+            return j;
+        };
         np.group = Some(kind);
         j += 2;
         if kind == GroupKind::Pair {
@@ -332,93 +418,171 @@ pub(crate) fn parse_np(
                 np.det = None;
             }
         }
+        j
     }
-    // Top/bottom/other before a part noun ("the top level", "the other two levels").
-    let mut which: Option<String> = None;
-    if let Some(w) = at(j)
-        && matches!(
-            w,
-            "top" | "bottom" | "middle" | "lower" | "upper" | "remaining" | "last"
-        )
-        && at(j + 1).is_some_and(|n| lex.part(n).is_some())
-    {
-        which = Some(w.to_string());
-        j += 1;
-    }
-    if np.other && which.is_none() {
-        which = Some("other".to_string());
-    }
-    // Modifiers.
-    let mods_from = j;
-    while j < end {
-        // "an operating theatre": a room WordNet knows as a whole is no modifier + room.
-        if kb.room_type_at(tokens, j).is_none()
-            && let (Some(a), Some(b)) = (at(j), at(j + 1))
-            && j + 2 <= end
-            && wordnet_room_words(&format!("{a} {}", lex.singular(b))).is_some()
+
+    /// Top/bottom/other before a part noun ("the top level", "the other two levels").
+    fn read_part_position(&self, np: &Np, mut j: usize) -> (Option<String>, usize) {
+        let mut which: Option<String> = None;
+        if let Some(w) = self.at(j)
+            && matches!(
+                w,
+                "top" | "bottom" | "middle" | "lower" | "upper" | "remaining" | "last"
+            )
+            && self.at(j + 1).is_some_and(|n| self.lex.part(n).is_some())
         {
-            break;
+            which = Some(w.to_string());
+            j += 1;
         }
-        match modifier_at(lex, kb, tokens, j, sentence_start) {
-            Some(m) if j + m.len <= end => {
-                np.attrs.add(&m);
-                j += m.len;
+        if np.other && which.is_none() {
+            which = Some("other".to_string());
+        }
+        (which, j)
+    }
+
+    /// Modifiers, and a room word that modifies the noun after it; returns the index after.
+    fn read_modifiers(&self, np: &mut Np, mut j: usize) -> usize {
+        let (lex, kb, tokens, end) = (self.lex, self.kb, self.tokens, self.end);
+        while j < end {
+            // "an operating theatre": a room WordNet knows as a whole is no modifier + room.
+            if kb.room_type_at(tokens, j).is_none()
+                && let (Some(a), Some(b)) = (self.at(j), self.at(j + 1))
+                && j + 2 <= end
+                && wordnet_room_words(&format!("{a} {}", lex.singular(b))).is_some()
+            {
+                break;
             }
-            _ => break,
+            match modifier_at(lex, kb, tokens, j, self.sentence_start) {
+                Some(m) if j + m.len <= end => {
+                    np.attrs.add(&m);
+                    j += m.len;
+                }
+                _ => break,
+            }
         }
+        // "a living room sofa", "this boutique day spa": a room word before a noun modifies it.
+        if let Some((rn, _)) = kb.room_type_at(tokens, j)
+            && j + rn < end
+            && lex.noun_at(tokens, j).is_none_or(|(l, ..)| l <= rn)
+            && noun_follows(lex, kb, tokens, j + rn)
+        {
+            np.attrs
+                .modifiers
+                .extend(tokens[j..j + rn].iter().map(|t| t.raw.clone()));
+            j += rn;
+        }
+        j
     }
-    // "a living room sofa", "this boutique day spa": a room word before a noun modifies it.
-    if let Some((rn, _)) = kb.room_type_at(tokens, j)
-        && j + rn < end
-        && lex.noun_at(tokens, j).is_none_or(|(l, ..)| l <= rn)
-        && noun_follows(lex, kb, tokens, j + rn)
-    {
-        np.attrs
-            .modifiers
-            .extend(tokens[j..j + rn].iter().map(|t| t.raw.clone()));
-        j += rn;
+
+    /// The head: a room, a lexicon noun, a landmark, part or feature word, or an open-vocabulary
+    /// noun, tried in that order; sets it on `np` and returns the index after the phrase.
+    fn read_head(&self, np: &mut Np, before: &BeforeHead) -> Option<usize> {
+        let (lex, tokens, j) = (self.lex, self.tokens, before.j);
+        let w = self.at(j)?;
+        let noun = agree(lex, np, tokens, j, self.end);
+        let room = self
+            .kb
+            .room_type_at(tokens, j)
+            .filter(|(n, _)| j + n <= self.end);
+        let noun_len = noun.map_or(0, |(n, ..)| n);
+        if let Some(next) = self.room_head(np, before, noun_len, room) {
+            return Some(next);
+        }
+        if let Some((len, entry, plural)) = noun {
+            if j > before.mods_from && names_building(lex, tokens, j, len) {
+                np.head = Head::NonObject;
+                return Some(j + len);
+            }
+            if !self.bare_ambiguous(w, j, noun_len, before.evidence) {
+                let noun = NounAt {
+                    start: j,
+                    len,
+                    entry,
+                    plural,
+                };
+                return Some(self.object_head(np, before, noun));
+            }
+        }
+        if let Some(next) = self.landmark_part_or_setting_head(np, before, w) {
+            return Some(next);
+        }
+        if let Some(next) = self.feature_or_non_object_head(np, before, w) {
+            return Some(next);
+        }
+        if (before.evidence || self.in_list)
+            && let Some(next) = self.open_vocabulary_head(np, before)
+        {
+            return Some(next);
+        }
+        if j > self.start && (before.evidence || !np.attrs.modifiers.is_empty()) {
+            // Only modifiers ("leather and metal accents": "leather" alone).
+            np.head = Head::NonObject;
+            return Some(j);
+        }
+        None
     }
-    let evidence =
-        np.has_det() || np.ordinal.is_some() || !np.attrs.modifiers.is_empty() || np.negated;
-    let w = at(j)?;
-    // Head.
-    let noun = agree(lex, &np, tokens, j, end);
-    let room = kb.room_type_at(tokens, j).filter(|(n, _)| j + n <= end);
-    let noun_len = noun.map_or(0, |(n, ..)| n);
-    let room_len = room.map_or(0, |(n, _)| n);
-    // "this home is compact": a bare word after a linking verb that WordNet also reads as an
-    // adjective is the predicate, not a thing.
-    let predicate = j == i
-        && i > sentence_start
-        && word(tokens, i - 1).is_some_and(is_linking_verb)
-        && !lex.is_plural(w)
-        && super::wordnet::wordnet().has_pos(w, super::wordnet::Pos::Adj);
-    let bare_ambiguous =
-        noun_len == 1 && (lex.is_ambiguous_bare(w) || predicate) && !evidence && !in_list;
-    // "a kiln room", "a boot room": nouns before a room word name the room.
-    if room_len == 0
-        && let Some((n, key, words)) = room_compound(lex, kb, tokens, j, end)
-        && noun_len < n
-    {
-        np.plural = lex.is_plural(&tokens[j + n - 1].text);
-        np.head = Head::Room { key, words };
-        return Some((np, j + n));
+
+    /// A lone one-word noun that is often something else ("light"), or a predicate, with
+    /// nothing that presents it as a thing.
+    fn bare_ambiguous(&self, w: &str, j: usize, noun_len: usize, evidence: bool) -> bool {
+        let (lex, i) = (self.lex, self.start);
+        // "this home is compact": a bare word after a linking verb that WordNet also reads as
+        // an adjective is the predicate, not a thing.
+        let predicate = j == i
+            && i > self.sentence_start
+            && word(self.tokens, i - 1).is_some_and(is_linking_verb)
+            && !lex.is_plural(w)
+            && super::wordnet::wordnet().has_pos(w, super::wordnet::Pos::Adj);
+        noun_len == 1 && (lex.is_ambiguous_bare(w) || predicate) && !evidence && !self.in_list
     }
-    // A room or building WordNet knows and the registry does not ("scullery"): the nearest
-    // room type along its hypernyms.
-    if room_len == 0
-        && noun_len == 0
-        && let Some((n, key, words)) = wordnet_room(lex, tokens, j, end)
-    {
-        np.plural = lex.is_plural(&tokens[j + n - 1].text);
-        let words = room_name(lex, tokens, mods_from, j, words);
-        np.head = Head::Room { key, words };
-        return Some((np, j + n));
+
+    /// A room head when the words name a room at least as long as the lexicon noun there.
+    fn room_head(
+        &self,
+        np: &mut Np,
+        before: &BeforeHead,
+        noun_len: usize,
+        room: Option<(usize, &str)>,
+    ) -> Option<usize> {
+        let (lex, tokens, j, end) = (self.lex, self.tokens, before.j, self.end);
+        let room_len = room.map_or(0, |(n, _)| n);
+        // "a kiln room", "a boot room": nouns before a room word name the room.
+        if room_len == 0
+            && let Some((n, key, words)) = room_compound(lex, self.kb, tokens, j, end)
+            && noun_len < n
+        {
+            np.plural = lex.is_plural(&tokens[j + n - 1].text);
+            np.head = Head::Room { key, words };
+            return Some(j + n);
+        }
+        // A room or building WordNet knows and the registry does not ("scullery"): the
+        // nearest room type along its hypernyms.
+        if room_len == 0
+            && noun_len == 0
+            && let Some((n, key, words)) = wordnet_room(lex, tokens, j, end)
+        {
+            np.plural = lex.is_plural(&tokens[j + n - 1].text);
+            let words = room_name(lex, tokens, before.mods_from, j, words);
+            np.head = Head::Room { key, words };
+            return Some(j + n);
+        }
+        let (n, key) = room.filter(|(n, _)| *n > 0 && *n >= noun_len)?;
+        Some(self.registry_room_head(np, before, n, key))
     }
-    if room_len > 0 && room_len >= noun_len {
-        let (mut n, key) = room.unwrap_or((0, ""));
+
+    /// A room type of the registry, `n` words at the head, widened by a second room word or a
+    /// space word after it.
+    fn registry_room_head(
+        &self,
+        np: &mut Np,
+        before: &BeforeHead,
+        mut n: usize,
+        key: &str,
+    ) -> usize {
+        let (lex, tokens, j, end) = (self.lex, self.tokens, before.j, self.end);
         // "a florist shop", "the reception hall": a second room word names the same room.
-        if let Some((n2, _)) = kb
+        if let Some((n2, _)) = self
+            .kb
             .room_type_at(tokens, j + n)
             .filter(|(n2, _)| j + n + n2 <= end)
             && lex.noun_at(tokens, j + n).is_none_or(|(l, ..)| l <= n2)
@@ -443,23 +607,54 @@ pub(crate) fn parse_np(
         np.plural = lex.is_plural(&words[n - 1]);
         np.head = Head::Room {
             key: key.to_string(),
-            words: room_name(lex, tokens, mods_from, j, ws.join(" ")),
+            words: room_name(lex, tokens, before.mods_from, j, ws.join(" ")),
         };
-        return Some((np, j + n));
+        j + n
     }
-    if let Some((n, ..)) = noun
-        && j > mods_from
-        && names_building(lex, tokens, j, n)
-    {
-        np.head = Head::NonObject;
-        return Some((np, j + n));
+
+    /// A lexicon noun head, with the nouns before it as modifiers, unknown nouns after it, or
+    /// read as a part ("the top shelf"); returns the index after the phrase.
+    fn object_head(&self, np: &mut Np, before: &BeforeHead, noun: NounAt) -> usize {
+        let noun = self.absorb_noun_compounds(np, noun);
+        let NounAt {
+            start,
+            len: n,
+            plural,
+            ..
+        } = noun;
+        // A known noun followed by nouns the lexicon does not know ends with them: "ball
+        // pit", "filter coffee stand" — when WordNet grounds the last one as a thing.
+        if !plural && let Some(next) = self.compound_tail_head(np, start, n) {
+            return next;
+        }
+        // A part noun with an ordinal or "top": "the top shelf", "the second shelf".
+        let head_word = self.tokens[start + n - 1].text.as_str();
+        if (np.ordinal.is_some() || before.which.is_some())
+            && self
+                .lex
+                .part(head_word)
+                .is_some_and(|p| p == "level_if_parent")
+        {
+            np.head = Head::Part {
+                kind: "level".to_string(),
+                which: before.which.clone(),
+            };
+            np.plural = plural;
+            return start + n;
+        }
+        self.lexicon_object(np, before, noun)
     }
-    if let Some((n, entry, plural)) = noun
-        && !bare_ambiguous
-    {
-        let mut start = j;
-        let (mut n, mut entry, mut plural) = (n, entry, plural);
-        // Noun-noun compounds: "glass table" — the first noun modifies the second.
+
+    /// Noun-noun compounds: "glass table" — the first noun modifies the second. Returns the
+    /// last noun.
+    fn absorb_noun_compounds(&self, np: &mut Np, noun: NounAt) -> NounAt {
+        let (lex, tokens, end) = (self.lex, self.tokens, self.end);
+        let NounAt {
+            mut start,
+            len: mut n,
+            mut entry,
+            mut plural,
+        } = noun;
         while !plural
             && start + n < end
             && let Some((n2, e2, p2)) = lex.noun_at(tokens, start + n)
@@ -483,43 +678,44 @@ pub(crate) fn parse_np(
             entry = e2;
             plural = p2;
         }
-        // A known noun followed by nouns the lexicon does not know ends with them: "ball
-        // pit", "filter coffee stand" — when WordNet grounds the last one as a thing.
+        NounAt {
+            start,
+            len: n,
+            entry,
+            plural,
+        }
+    }
+
+    /// The noun of `n` words at `start` followed by unknown nouns WordNet grounds; returns the
+    /// index after them, `None` when no such nouns follow.
+    fn compound_tail_head(&self, np: &mut Np, start: usize, n: usize) -> Option<usize> {
+        let (lex, tokens) = (self.lex, self.tokens);
         let singular_det = matches!(np.det.as_deref(), Some("indefinite" | "each" | "another"))
             || np.number == Some(1);
-        if !plural
-            && let Some((len, head)) = compound_tail(lex, kb, tokens, start + n, end, singular_det)
-        {
-            let last = start + n + len - 1;
-            // "an antique barometer": a one-word noun that is also an adjective modifies.
-            let adjective_first = n == 1
-                && super::wordnet::wordnet().has_pos(&tokens[start].text, super::wordnet::Pos::Adj);
-            if adjective_first {
-                np.attrs.adjectives.push(tokens[start].text.clone());
-                np.attrs.modifiers.push(tokens[start].raw.clone());
-            }
-            let from = if adjective_first { start + n } else { start };
-            let mut written: Vec<String> =
-                tokens[from..=last].iter().map(|t| t.text.clone()).collect();
-            np.plural = lex.is_plural(&tokens[last].text);
-            if let Some(w) = written.last_mut() {
-                *w = head.singular.clone();
-            }
-            np.set_grounded(written.join(" "), &head);
-            return Some((np, last + 1));
+        let (len, head) = compound_tail(lex, self.kb, tokens, start + n, self.end, singular_det)?;
+        let last = start + n + len - 1;
+        // "an antique barometer": a one-word noun that is also an adjective modifies.
+        let adjective_first = n == 1
+            && super::wordnet::wordnet().has_pos(&tokens[start].text, super::wordnet::Pos::Adj);
+        if adjective_first {
+            np.attrs.adjectives.push(tokens[start].text.clone());
+            np.attrs.modifiers.push(tokens[start].raw.clone());
         }
-        // A part noun with an ordinal or "top": "the top shelf", "the second shelf".
-        let head_word = tokens[start + n - 1].text.as_str();
-        if (np.ordinal.is_some() || which.is_some())
-            && lex.part(head_word).is_some_and(|p| p == "level_if_parent")
-        {
-            np.head = Head::Part {
-                kind: "level".to_string(),
-                which,
-            };
-            np.plural = plural;
-            return Some((np, start + n));
+        let from = if adjective_first { start + n } else { start };
+        let mut written: Vec<String> = tokens[from..=last].iter().map(|t| t.text.clone()).collect();
+        np.plural = lex.is_plural(&tokens[last].text);
+        if let Some(w) = written.last_mut() {
+            *w = head.singular.clone();
         }
+        np.set_grounded(written.join(" "), &head);
+        Some(last + 1)
+    }
+
+    /// The object head of lexicon entry `entry` written as `noun`, and a group suffix after it
+    /// ("arrangement"); returns the index after the phrase.
+    fn lexicon_object(&self, np: &mut Np, before: &BeforeHead, noun: NounAt) -> usize {
+        let (lex, tokens) = (self.lex, self.tokens);
+        let (start, n, entry) = (noun.start, noun.len, noun.entry);
         let mut written: Vec<String> = tokens[start..start + n]
             .iter()
             .map(|t| t.text.clone())
@@ -536,140 +732,154 @@ pub(crate) fn parse_np(
             .objects
             .get(entry)
             .map_or_else(|| written.join(" "), |e| e.noun.clone());
-        np.plural = plural;
+        np.plural = noun.plural;
         np.head = Head::Object {
             entry: Some(entry),
-            noun: name_of(lex, tokens, mods_from, start, &written.join(" ")),
+            noun: name_of(lex, tokens, before.mods_from, start, &written.join(" ")),
             canonical,
             head_entry: None,
         };
         let mut k = start + n;
-        if let Some(s) = at(k)
+        if let Some(s) = self.at(k)
             && lex.is_group_suffix(s)
         {
             np.group_suffix = true;
             k += 1;
         }
-        return Some((np, k));
+        k
     }
-    if let Some(class) = lex.landmark(w) {
-        // "the front wall", "the back corner": the last landmark word is the head.
-        if let Some(next) = at(j + 1)
-            && let Some(c2) = lex.landmark(next)
-            && matches!(c2, "wall" | "walls" | "corner" | "window" | "door")
+
+    /// A landmark ("the front wall"), a part ("levels", "place settings") or a setting noun
+    /// ("people") at the head `w`.
+    fn landmark_part_or_setting_head(
+        &self,
+        np: &mut Np,
+        before: &BeforeHead,
+        w: &str,
+    ) -> Option<usize> {
+        let (lex, j) = (self.lex, before.j);
+        if let Some(class) = lex.landmark(w) {
+            // "the front wall", "the back corner": the last landmark word is the head.
+            if let Some(next) = self.at(j + 1)
+                && let Some(c2) = lex.landmark(next)
+                && matches!(c2, "wall" | "walls" | "corner" | "window" | "door")
+            {
+                np.plural = lex.is_plural(next);
+                np.head = Head::Landmark(c2.to_string());
+                return Some(j + 2);
+            }
+            np.plural = lex.is_plural(w);
+            np.head = Head::Landmark(class.to_string());
+            return Some(j + 1);
+        }
+        if let Some(part) = lex.part(w)
+            && part != "level_if_parent"
+            && part != "top"
         {
-            np.plural = lex.is_plural(next);
-            np.head = Head::Landmark(c2.to_string());
-            return Some((np, j + 2));
+            let kind = if part == "setting" {
+                "setting"
+            } else {
+                "level"
+            };
+            np.plural = lex.is_plural(w);
+            np.head = Head::Part {
+                kind: kind.to_string(),
+                which: before.which.clone(),
+            };
+            // "place settings"
+            return Some(j + 1);
         }
-        np.plural = lex.is_plural(w);
-        np.head = Head::Landmark(class.to_string());
-        return Some((np, j + 1));
-    }
-    if let Some(part) = lex.part(w)
-        && part != "level_if_parent"
-        && part != "top"
-    {
-        let kind = if part == "setting" {
-            "setting"
-        } else {
-            "level"
-        };
-        np.plural = lex.is_plural(w);
-        np.head = Head::Part {
-            kind: kind.to_string(),
-            which,
-        };
-        // "place settings"
-        return Some((np, j + 1));
-    }
-    if lex.is_setting_noun(w) {
-        np.plural = true;
-        np.head = Head::Setting;
-        return Some((np, j + 1));
-    }
-    if lex.is_feature_noun(w) {
-        // "a spinning wheel": a part word that makes a thing WordNet knows with the word
-        // before it is that thing.
-        if j > mods_from
-            && let Some(prev) = word(tokens, j - 1)
-            && let Some(pair) = wordnet_pair(lex, prev, w)
-            && let Ok(head) = ground_words(lex, &[prev, w], true)
-        {
-            np.plural = head.singular != w;
-            np.set_grounded(pair, &head);
-            return Some((np, j + 1));
+        if lex.is_setting_noun(w) {
+            np.plural = true;
+            np.head = Head::Setting;
+            return Some(j + 1);
         }
-        np.head = Head::Feature;
-        return Some((np, j + 1));
+        None
     }
-    if lex.is_non_object(w) {
-        let mut k = j;
-        while at(k).is_some_and(|x| lex.is_non_object(x)) {
-            k += 1;
+
+    /// A feature word ("accents") or words that are never objects ("area", "theme") at the
+    /// head `w`; `None` when a noun they modify follows.
+    fn feature_or_non_object_head(
+        &self,
+        np: &mut Np,
+        before: &BeforeHead,
+        w: &str,
+    ) -> Option<usize> {
+        let (lex, tokens, j) = (self.lex, self.tokens, before.j);
+        if lex.is_feature_noun(w) {
+            // "a spinning wheel": a part word that makes a thing WordNet knows with the word
+            // before it is that thing.
+            if j > before.mods_from
+                && let Some(prev) = word(tokens, j - 1)
+                && let Some(pair) = wordnet_pair(lex, prev, w)
+                && let Ok(head) = ground_words(lex, &[prev, w], true)
+            {
+                np.plural = head.singular != w;
+                np.set_grounded(pair, &head);
+                return Some(j + 1);
+            }
+            np.head = Head::Feature;
+            return Some(j + 1);
         }
-        // "a coffee grinder": a word that is never an object may modify a noun after it.
-        let noun_after = k < end
-            && compound_word(lex, kb, tokens, k)
-            && (lex.noun_at(tokens, k).is_some() || at(k).is_some_and(ground::is_noun));
-        if !noun_after {
-            np.head = Head::NonObject;
-            return Some((np, k));
+        if lex.is_non_object(w) {
+            let mut k = j;
+            while self.at(k).is_some_and(|x| lex.is_non_object(x)) {
+                k += 1;
+            }
+            // "a coffee grinder": a word that is never an object may modify a noun after it.
+            let noun_after = k < self.end
+                && compound_word(lex, self.kb, tokens, k)
+                && (lex.noun_at(tokens, k).is_some() || self.at(k).is_some_and(ground::is_noun));
+            if !noun_after {
+                np.head = Head::NonObject;
+                return Some(k);
+            }
         }
+        None
     }
-    // Open vocabulary: words the lexicon does not know, the last a noun WordNet grounds.
-    if evidence || in_list {
+
+    /// Open vocabulary: words the lexicon does not know, the last a noun WordNet grounds.
+    fn open_vocabulary_head(&self, np: &mut Np, before: &BeforeHead) -> Option<usize> {
+        let (lex, tokens, j) = (self.lex, self.tokens, before.j);
         // Counted, listed or introduced with "a": the phrase presents a thing.
         let strong = np.number.is_some()
             || np.quant.is_some()
             || np.group.is_some()
             || np.negated
-            || in_list
+            || self.in_list
             || matches!(
                 np.det.as_deref(),
                 Some("indefinite" | "each" | "another" | "several")
             );
-        match open_head(lex, kb, tokens, j, end, &np, strong, in_list) {
-            Open::Lexicon { before, n2, .. } if names_building(lex, tokens, before, n2) => {
+        match open_head(lex, self.kb, tokens, j, self.end, np, strong, self.in_list) {
+            Open::Lexicon { before: at, n2, .. } if names_building(lex, tokens, at, n2) => {
                 np.head = Head::NonObject;
-                return Some((np, before + n2));
+                Some(at + n2)
             }
             Open::Lexicon {
-                before,
+                before: at,
                 n2,
                 entry,
                 plural,
             } => {
-                np.attrs
-                    .modifiers
-                    .extend(tokens[j..before].iter().map(|t| t.raw.clone()));
-                let mut written: Vec<String> = tokens[before..before + n2]
-                    .iter()
-                    .map(|t| t.text.clone())
-                    .collect();
-                if let Some(last) = written.last_mut() {
-                    *last = lex.singular(last);
-                }
-                np.plural = plural;
-                np.head = Head::Object {
-                    entry: Some(entry),
-                    noun: name_of(lex, tokens, mods_from, before, &written.join(" ")),
-                    canonical: lex
-                        .objects
-                        .get(entry)
-                        .map_or_else(|| written.join(" "), |e| e.noun.clone()),
-                    head_entry: None,
+                let noun = NounAt {
+                    start: at,
+                    len: n2,
+                    entry,
+                    plural,
                 };
-                return Some((np, before + n2));
+                Some(self.modified_lexicon_object(np, before, noun))
             }
-            Open::Room { before, n2, key } => {
+            Open::Room {
+                before: at,
+                n2,
+                key,
+            } => {
                 np.attrs
                     .modifiers
-                    .extend(tokens[j..before].iter().map(|t| t.raw.clone()));
-                let mut ws: Vec<String> = tokens[before..before + n2]
-                    .iter()
-                    .map(|t| t.text.clone())
-                    .collect();
+                    .extend(tokens[j..at].iter().map(|t| t.raw.clone()));
+                let mut ws: Vec<String> =
+                    tokens[at..at + n2].iter().map(|t| t.text.clone()).collect();
                 if let Some(last) = ws.last_mut() {
                     *last = lex.singular(last);
                 }
@@ -677,11 +887,11 @@ pub(crate) fn parse_np(
                     key,
                     words: ws.join(" "),
                 };
-                return Some((np, before + n2));
+                Some(at + n2)
             }
             Open::Feature(k) => {
                 np.head = Head::Feature;
-                return Some((np, k));
+                Some(k)
             }
             Open::Object {
                 adjectives,
@@ -693,22 +903,40 @@ pub(crate) fn parse_np(
                 np.attrs.modifiers.extend(adjectives);
                 np.plural = plural;
                 np.set_grounded(noun, &head);
-                return Some((np, next));
+                Some(next)
             }
             Open::Dropped { next, report } => {
                 np.report = Some(report);
                 np.head = Head::NonObject;
-                return Some((np, next));
+                Some(next)
             }
-            Open::Nothing => {}
+            Open::Nothing => None,
         }
     }
-    if j > i && (evidence || !np.attrs.modifiers.is_empty()) {
-        // Only modifiers ("leather and metal accents": "leather" alone).
-        np.head = Head::NonObject;
-        return Some((np, j));
+
+    /// A lexicon noun after words the lexicon does not know ("velvet chaise"): they modify it.
+    fn modified_lexicon_object(&self, np: &mut Np, before: &BeforeHead, noun: NounAt) -> usize {
+        let (lex, tokens) = (self.lex, self.tokens);
+        let (at, n2, entry) = (noun.start, noun.len, noun.entry);
+        np.attrs
+            .modifiers
+            .extend(tokens[before.j..at].iter().map(|t| t.raw.clone()));
+        let mut written: Vec<String> = tokens[at..at + n2].iter().map(|t| t.text.clone()).collect();
+        if let Some(last) = written.last_mut() {
+            *last = lex.singular(last);
+        }
+        np.plural = noun.plural;
+        np.head = Head::Object {
+            entry: Some(entry),
+            noun: name_of(lex, tokens, before.mods_from, at, &written.join(" ")),
+            canonical: lex
+                .objects
+                .get(entry)
+                .map_or_else(|| written.join(" "), |e| e.noun.clone()),
+            head_entry: None,
+        };
+        at + n2
     }
-    None
 }
 
 /// A head noun the lexicon does not know, grounded in WordNet.

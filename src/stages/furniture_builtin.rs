@@ -11,7 +11,7 @@ use super::StageState;
 use crate::agents::{
     AgentCx, AgentError, Critic, Critique, DesignRequest, Designer, Issue, Role, Score,
 };
-use crate::plan::Arrangement;
+use crate::plan::{Arrangement, RoomPlan};
 
 /// Whether a piece of this category is a seat that faces a table (`chair`, `dining_chair`,
 /// `bar_stool`).
@@ -251,240 +251,259 @@ fn score(category: &str, value: f64, reason: String) -> Score {
     }
 }
 
+/// A number of an observation, `default` when it is missing or not a number (the tools write
+/// every field, but a critic never fails on a reply it can still read).
+fn num(v: &Value, default: f64) -> f64 {
+    v.as_f64().unwrap_or(default)
+}
+
+/// A string of an observation, empty when it is missing.
+fn text(v: &Value) -> &str {
+    v.as_str().unwrap_or_default()
+}
+
+/// The furniture of an `observe_room` reply (wall and ceiling objects are other stages').
+fn furniture_of(obs: &Value) -> Vec<&Value> {
+    obs["objects"]
+        .as_array()
+        .map(|a| a.iter().filter(|o| o["kind"] == "furniture").collect())
+        .unwrap_or_default()
+}
+
+/// Prompt following: requested furniture counts present, excluded absent.
+fn prompt_following(
+    obs: &Value,
+    furniture: &[&Value],
+    plan: &RoomPlan,
+    issues: &mut Vec<Issue>,
+) -> Score {
+    let (got, wanted) = requested_present(obs, plan, issues);
+    let excluded_present = excluded_present(obs, furniture, issues);
+    let coverage = if wanted == 0 {
+        1.0
+    } else {
+        got as f64 / wanted as f64
+    };
+    score(
+        "prompt_following",
+        10.0 * coverage - 3.0 * excluded_present as f64,
+        format!(
+            "{got} of {wanted} requested pieces present{}",
+            if excluded_present > 0 {
+                format!(", {excluded_present} excluded pieces present")
+            } else {
+                String::new()
+            }
+        ),
+    )
+}
+
+/// How many of the requested furniture pieces are present and how many were asked for
+/// (other stages' nouns are not counted: a missing lamp on the wall is not the furniture's).
+fn requested_present(obs: &Value, plan: &RoomPlan, issues: &mut Vec<Issue>) -> (u32, u32) {
+    let mut wanted = 0u32;
+    let mut got = 0u32;
+    for r in obs["requested"].as_array().into_iter().flatten() {
+        let noun = text(&r["noun"]);
+        if !plan.furniture.iter().any(|w| w.noun == noun) {
+            continue;
+        }
+        let (w, p) = (
+            r["wanted"].as_u64().unwrap_or(0) as u32,
+            r["present"].as_u64().unwrap_or(0) as u32,
+        );
+        wanted += w;
+        got += p.min(w);
+        if p < w {
+            issues.push(Issue {
+                objects: vec![],
+                description: format!("add {} more {noun} (asked for {w}, have {p})", w - p),
+            });
+        }
+    }
+    (got, wanted)
+}
+
+/// How many placed pieces the prompt excluded.
+fn excluded_present(obs: &Value, furniture: &[&Value], issues: &mut Vec<Issue>) -> u32 {
+    let mut present = 0;
+    for e in obs["excluded"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|v| v.as_str())
+    {
+        for o in furniture {
+            if o["category"] == e {
+                present += 1;
+                issues.push(Issue {
+                    objects: vec![text(&o["id"]).into()],
+                    description: format!("the prompt says no {e}; remove it"),
+                });
+            }
+        }
+    }
+    present
+}
+
+/// Functionality: seats face a table-like piece nearby.
+fn functionality(furniture: &[&Value], issues: &mut Vec<Issue>) -> Score {
+    let parents: Vec<&Value> = furniture
+        .iter()
+        .copied()
+        .filter(|o| is_seat_parent(text(&o["category"])))
+        .collect();
+    let mut seats = 0;
+    let mut facing = 0;
+    for chair in furniture.iter().filter(|o| is_seat(text(&o["category"]))) {
+        let Some(table) = seat_table(chair, &parents) else {
+            continue;
+        };
+        seats += 1;
+        if faces(chair, table) {
+            facing += 1;
+        } else {
+            issues.push(Issue {
+                objects: vec![text(&chair["id"]).into()],
+                description: format!("turn it to face {}", text(&table["id"])),
+            });
+        }
+    }
+    let value = if seats == 0 {
+        10.0
+    } else {
+        10.0 * facing as f64 / seats as f64
+    };
+    score(
+        "functionality",
+        value,
+        format!("{facing} of {seats} seats face their table"),
+    )
+}
+
+/// The table-like piece a seat belongs to: the nearest one, when the seat is within a metre of
+/// its edge (half its larger side plus a metre from its centre).
+fn seat_table<'v>(chair: &Value, parents: &[&'v Value]) -> Option<&'v Value> {
+    let (x, y) = (num(&chair["x"], 0.0), num(&chair["y"], 0.0));
+    let distance = |p: &Value| (num(&p["x"], 0.0) - x).hypot(num(&p["y"], 0.0) - y);
+    let nearest = parents
+        .iter()
+        .min_by(|a, b| distance(a).total_cmp(&distance(b)))?;
+    let reach = num(&nearest["size_m"][0], 1.0).max(num(&nearest["size_m"][1], 1.0)) / 2.0 + 1.0;
+    (distance(nearest) <= reach).then_some(*nearest)
+}
+
+/// Whether the seat's front (its -sin/cos yaw direction) points at the table's centre within
+/// about 37 degrees.
+fn faces(chair: &Value, table: &Value) -> bool {
+    let (x, y) = (num(&chair["x"], 0.0), num(&chair["y"], 0.0));
+    let yaw = num(&chair["yaw_deg"], 0.0).to_radians();
+    let front = [-yaw.sin(), yaw.cos()];
+    let to = [num(&table["x"], 0.0) - x, num(&table["y"], 0.0) - y];
+    let n = to[0].hypot(to[1]).max(1e-9);
+    (front[0] * to[0] + front[1] * to[1]) / n > 0.8
+}
+
+/// Spatial layout: how much floor the furniture takes.
+fn spatial_layout(obs: &Value, furniture: &[&Value], issues: &mut Vec<Issue>) -> Score {
+    let floor = num(&obs["size_m"][0], 1.0) * num(&obs["size_m"][1], 1.0);
+    let used: f64 = furniture
+        .iter()
+        .map(|o| num(&o["size_m"][0], 0.0) * num(&o["size_m"][1], 0.0))
+        .sum();
+    let frac = used / floor.max(1e-9);
+    let value = if furniture.is_empty() {
+        3.0
+    } else if frac > 0.6 {
+        issues.push(Issue {
+            objects: vec![],
+            description: format!(
+                "the floor is crammed ({:.0}% covered); remove or shrink pieces",
+                frac * 100.0
+            ),
+        });
+        10.0 - (frac - 0.6) * 25.0
+    } else {
+        10.0
+    };
+    score(
+        "spatial_layout",
+        value,
+        format!("furniture covers {:.0}% of the floor", frac * 100.0),
+    )
+}
+
+/// Reachability: every piece reachable from the door, and the free floor connected (NAV).
+fn reachability(reach: &Value, issues: &mut Vec<Issue>) -> Score {
+    let nav = num(&reach["nav"], 0.0);
+    let unreachable: Vec<String> = reach["unreachable"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|v| v.as_str().map(str::to_string))
+        .collect();
+    for id in &unreachable {
+        issues.push(Issue {
+            objects: vec![id.clone()],
+            description: format!("{id} cannot be reached from the door; move it or clear a path"),
+        });
+    }
+    let value =
+        10.0 - 2.0 * unreachable.len() as f64 - if nav < 0.95 { 10.0 * (0.95 - nav) } else { 0.0 };
+    score(
+        "reachability",
+        value,
+        format!("NAV {nav:.2}, {} unreachable", unreachable.len()),
+    )
+}
+
+/// Physical feasibility: penetrating pairs.
+fn physical_feasibility(collisions: &Value, issues: &mut Vec<Issue>) -> Score {
+    let pairs: Vec<&Value> = collisions["collisions"]
+        .as_array()
+        .map(|a| a.iter().collect())
+        .unwrap_or_default();
+    for p in &pairs {
+        let (a, b) = (text(&p["a"]), text(&p["b"]));
+        issues.push(Issue {
+            objects: vec![a.into(), b.into()],
+            description: format!("{a} and {b} overlap by {} mm; move one", p["depth_mm"]),
+        });
+    }
+    score(
+        "physical_feasibility",
+        10.0 - 3.0 * pairs.len() as f64,
+        format!("{} penetrating pairs", pairs.len()),
+    )
+}
+
 impl Critic<StageState> for BuiltinFurnitureCritic {
     fn critique(
         &mut self,
         state: &mut StageState,
         cx: &mut AgentCx<'_, StageState>,
     ) -> Result<Critique, AgentError> {
-        let unusable = |m: String| AgentError::Unusable {
-            role: "critic",
-            stage: "furniture".into(),
-            message: m,
+        let mut measure = |tool: &str| {
+            cx.call(state, Role::Critic, tool, json!({}))
+                .map_err(|e| AgentError::Unusable {
+                    role: "critic",
+                    stage: "furniture".into(),
+                    message: e.message,
+                })
         };
-        let obs = cx
-            .call(state, Role::Critic, "observe_room", json!({}))
-            .map_err(|e| unusable(e.message))?;
-        let collisions = cx
-            .call(state, Role::Critic, "check_collisions", json!({}))
-            .map_err(|e| unusable(e.message))?;
-        let reach = cx
-            .call(state, Role::Critic, "check_reachability", json!({}))
-            .map_err(|e| unusable(e.message))?;
+        let obs = measure("observe_room")?;
+        let collisions = measure("check_collisions")?;
+        let reach = measure("check_reachability")?;
+        let furniture = furniture_of(&obs);
+        // Issues in category order: the designer reads them in the order they are listed.
         let mut issues = Vec::new();
-        let furniture: Vec<&Value> = obs["objects"]
-            .as_array()
-            .map(|a| a.iter().filter(|o| o["kind"] == "furniture").collect())
-            .unwrap_or_default();
-
-        // Prompt following: requested furniture counts present, excluded absent.
-        let mut wanted = 0u32;
-        let mut got = 0u32;
-        for r in obs["requested"].as_array().into_iter().flatten() {
-            let noun = r["noun"].as_str().unwrap_or_default();
-            let is_furniture = state.plan.furniture.iter().any(|w| w.noun == noun);
-            if !is_furniture {
-                continue;
-            }
-            let (w, p) = (
-                r["wanted"].as_u64().unwrap_or(0) as u32,
-                r["present"].as_u64().unwrap_or(0) as u32,
-            );
-            wanted += w;
-            got += p.min(w);
-            if p < w {
-                issues.push(Issue {
-                    objects: vec![],
-                    description: format!("add {} more {noun} (asked for {w}, have {p})", w - p),
-                });
-            }
-        }
-        let mut excluded_present = 0;
-        for e in obs["excluded"]
-            .as_array()
-            .into_iter()
-            .flatten()
-            .filter_map(|v| v.as_str())
-        {
-            for o in &furniture {
-                if o["category"] == e {
-                    excluded_present += 1;
-                    issues.push(Issue {
-                        objects: vec![o["id"].as_str().unwrap_or_default().into()],
-                        description: format!("the prompt says no {e}; remove it"),
-                    });
-                }
-            }
-        }
-        let coverage = if wanted == 0 {
-            1.0
-        } else {
-            got as f64 / wanted as f64
-        };
-        let prompt_score = 10.0 * coverage - 3.0 * excluded_present as f64;
-
-        // Functionality: seats face a table-like piece nearby.
-        let parents: Vec<&Value> = furniture
-            .iter()
-            .copied()
-            .filter(|o| is_seat_parent(o["category"].as_str().unwrap_or_default()))
-            .collect();
-        let mut seats = 0;
-        let mut facing = 0;
-        for chair in furniture
-            .iter()
-            .filter(|o| is_seat(o["category"].as_str().unwrap_or_default()))
-        {
-            let (x, y, yaw) = (
-                chair["x"].as_f64().unwrap_or(0.0),
-                chair["y"].as_f64().unwrap_or(0.0),
-                chair["yaw_deg"].as_f64().unwrap_or(0.0).to_radians(),
-            );
-            let nearest = parents.iter().min_by(|a, b| {
-                let da =
-                    (a["x"].as_f64().unwrap_or(0.0) - x).hypot(a["y"].as_f64().unwrap_or(0.0) - y);
-                let db =
-                    (b["x"].as_f64().unwrap_or(0.0) - x).hypot(b["y"].as_f64().unwrap_or(0.0) - y);
-                da.total_cmp(&db)
-            });
-            let Some(p) = nearest else { continue };
-            let (px, py) = (
-                p["x"].as_f64().unwrap_or(0.0),
-                p["y"].as_f64().unwrap_or(0.0),
-            );
-            let reach = p["size_m"][0]
-                .as_f64()
-                .unwrap_or(1.0)
-                .max(p["size_m"][1].as_f64().unwrap_or(1.0))
-                / 2.0
-                + 1.0;
-            if (px - x).hypot(py - y) > reach {
-                continue;
-            }
-            seats += 1;
-            let front = [-yaw.sin(), yaw.cos()];
-            let to = [px - x, py - y];
-            let n = to[0].hypot(to[1]).max(1e-9);
-            if (front[0] * to[0] + front[1] * to[1]) / n > 0.8 {
-                facing += 1;
-            } else {
-                issues.push(Issue {
-                    objects: vec![chair["id"].as_str().unwrap_or_default().into()],
-                    description: format!(
-                        "turn it to face {}",
-                        p["id"].as_str().unwrap_or_default()
-                    ),
-                });
-            }
-        }
-        let function_score = if seats == 0 {
-            10.0
-        } else {
-            10.0 * facing as f64 / seats as f64
-        };
-
-        // Spatial layout: how much floor the furniture takes.
-        let floor =
-            obs["size_m"][0].as_f64().unwrap_or(1.0) * obs["size_m"][1].as_f64().unwrap_or(1.0);
-        let used: f64 = furniture
-            .iter()
-            .map(|o| {
-                o["size_m"][0].as_f64().unwrap_or(0.0) * o["size_m"][1].as_f64().unwrap_or(0.0)
-            })
-            .sum();
-        let frac = used / floor.max(1e-9);
-        let layout_score = if furniture.is_empty() {
-            3.0
-        } else if frac > 0.6 {
-            issues.push(Issue {
-                objects: vec![],
-                description: format!(
-                    "the floor is crammed ({:.0}% covered); remove or shrink pieces",
-                    frac * 100.0
-                ),
-            });
-            10.0 - (frac - 0.6) * 25.0
-        } else {
-            10.0
-        };
-
-        // Reachability.
-        let nav = reach["nav"].as_f64().unwrap_or(0.0);
-        let unreachable: Vec<String> = reach["unreachable"]
-            .as_array()
-            .into_iter()
-            .flatten()
-            .filter_map(|v| v.as_str().map(str::to_string))
-            .collect();
-        for id in &unreachable {
-            issues.push(Issue {
-                objects: vec![id.clone()],
-                description: format!(
-                    "{id} cannot be reached from the door; move it or clear a path"
-                ),
-            });
-        }
-        let reach_score = 10.0
-            - 2.0 * unreachable.len() as f64
-            - if nav < 0.95 { 10.0 * (0.95 - nav) } else { 0.0 };
-
-        // Physical feasibility.
-        let pairs: Vec<&Value> = collisions["collisions"]
-            .as_array()
-            .map(|a| a.iter().collect())
-            .unwrap_or_default();
-        for p in &pairs {
-            issues.push(Issue {
-                objects: vec![
-                    p["a"].as_str().unwrap_or_default().into(),
-                    p["b"].as_str().unwrap_or_default().into(),
-                ],
-                description: format!(
-                    "{} and {} overlap by {} mm; move one",
-                    p["a"].as_str().unwrap_or_default(),
-                    p["b"].as_str().unwrap_or_default(),
-                    p["depth_mm"]
-                ),
-            });
-        }
-        let physics_score = 10.0 - 3.0 * pairs.len() as f64;
-
-        Ok(Critique {
-            scores: vec![
-                score(
-                    "prompt_following",
-                    prompt_score,
-                    format!(
-                        "{got} of {wanted} requested pieces present{}",
-                        if excluded_present > 0 {
-                            format!(", {excluded_present} excluded pieces present")
-                        } else {
-                            String::new()
-                        }
-                    ),
-                ),
-                score(
-                    "functionality",
-                    function_score,
-                    format!("{facing} of {seats} seats face their table"),
-                ),
-                score(
-                    "spatial_layout",
-                    layout_score,
-                    format!("furniture covers {:.0}% of the floor", frac * 100.0),
-                ),
-                score(
-                    "reachability",
-                    reach_score,
-                    format!("NAV {nav:.2}, {} unreachable", unreachable.len()),
-                ),
-                score(
-                    "physical_feasibility",
-                    physics_score,
-                    format!("{} penetrating pairs", pairs.len()),
-                ),
-            ],
-            issues,
-        })
+        let scores = vec![
+            prompt_following(&obs, &furniture, &state.plan, &mut issues),
+            functionality(&furniture, &mut issues),
+            spatial_layout(&obs, &furniture, &mut issues),
+            reachability(&reach, &mut issues),
+            physical_feasibility(&collisions, &mut issues),
+        ];
+        Ok(Critique { scores, issues })
     }
 }
