@@ -8,7 +8,6 @@ pub mod checkpoint;
 pub mod clutter;
 pub mod common;
 pub mod furniture;
-pub mod furniture_builtin;
 pub mod manipuland;
 pub mod manipuland_builtin;
 pub mod placement;
