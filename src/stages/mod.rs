@@ -9,7 +9,6 @@ pub mod clutter;
 pub mod common;
 pub mod furniture;
 pub mod manipuland;
-pub mod manipuland_builtin;
 pub mod placement;
 pub mod room;
 pub mod run;

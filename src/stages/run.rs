@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use super::checkpoint::{CheckpointStore, NoCheckpoints};
-use super::{StageKind, StageState, ceiling, furniture, manipuland, manipuland_builtin, wall};
+use super::{StageKind, StageState, ceiling, furniture, manipuland, wall};
 use crate::agents::llm::{LlmCritic, LlmDesigner, LlmOrchestrator};
 use crate::agents::{
     AgentError, Backend, BuiltinOrchestrator, CategorySpec, Critic, Designer, Orchestrator,
@@ -134,8 +134,8 @@ fn agents(backend: &Backend, kind: StageKind, style: PlacementStyle, brief_text:
                     orch,
                 ),
                 _ => (
-                    Box::new(manipuland_builtin::BuiltinManipulandDesigner),
-                    Box::new(manipuland_builtin::BuiltinManipulandCritic),
+                    Box::new(manipuland::BuiltinManipulandDesigner),
+                    Box::new(manipuland::BuiltinManipulandCritic),
                     orch,
                 ),
             }
