@@ -2,15 +2,21 @@
 //!
 //! Every stage edits the scene through [`SceneState`]'s few operations (build an asset, add,
 //! move or remove an object); [`StageState`] adds the room in focus and its plan.
+//!
+//! Each placement stage ([`furniture`], [`wall`], [`ceiling`], [`manipuland`]) is a folder of
+//! the same shape: `mod.rs` says what the stage does and is its public surface (`toolbox`,
+//! `categories`, the built-in designer and critic), `tools.rs` holds its tools, `builtin.rs`
+//! its built-in designer and critic; a long tool set goes on in further files of the folder,
+//! one concept each. Shared by the stages: the tools every stage has ([`common`]), floor
+//! geometry ([`placement`], [`room`]), how much clutter a piece holds ([`clutter`]), the runner
+//! ([`run`]) and the checkpoints of `--resume` ([`checkpoint`]).
 
 pub mod ceiling;
 pub mod checkpoint;
 pub mod clutter;
 pub mod common;
 pub mod furniture;
-pub mod furniture_builtin;
 pub mod manipuland;
-pub mod manipuland_builtin;
 pub mod placement;
 pub mod room;
 pub mod run;

@@ -5,10 +5,7 @@ use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use super::checkpoint::{CheckpointStore, NoCheckpoints};
-use super::{
-    StageKind, StageState, ceiling, furniture, furniture_builtin, manipuland, manipuland_builtin,
-    wall,
-};
+use super::{StageKind, StageState, ceiling, furniture, manipuland, wall};
 use crate::agents::llm::{LlmCritic, LlmDesigner, LlmOrchestrator};
 use crate::agents::{
     AgentError, Backend, BuiltinOrchestrator, CategorySpec, Critic, Designer, Orchestrator,
@@ -122,8 +119,8 @@ fn agents(backend: &Backend, kind: StageKind, style: PlacementStyle, brief_text:
             let orch = Box::new(BuiltinOrchestrator::with_style(style));
             match kind {
                 StageKind::Furniture => (
-                    Box::new(furniture_builtin::BuiltinFurnitureDesigner),
-                    Box::new(furniture_builtin::BuiltinFurnitureCritic),
+                    Box::new(furniture::BuiltinFurnitureDesigner),
+                    Box::new(furniture::BuiltinFurnitureCritic),
                     orch,
                 ),
                 StageKind::Wall => (
@@ -137,8 +134,8 @@ fn agents(backend: &Backend, kind: StageKind, style: PlacementStyle, brief_text:
                     orch,
                 ),
                 _ => (
-                    Box::new(manipuland_builtin::BuiltinManipulandDesigner),
-                    Box::new(manipuland_builtin::BuiltinManipulandCritic),
+                    Box::new(manipuland::BuiltinManipulandDesigner),
+                    Box::new(manipuland::BuiltinManipulandCritic),
                     orch,
                 ),
             }

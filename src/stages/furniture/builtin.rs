@@ -7,11 +7,11 @@
 
 use serde_json::{Value, json};
 
-use super::StageState;
 use crate::agents::{
     AgentCx, AgentError, Critic, Critique, DesignRequest, Designer, Issue, Role, Score,
 };
 use crate::plan::{Arrangement, RoomPlan};
+use crate::stages::StageState;
 
 /// Whether a piece of this category is a seat that faces a table (`chair`, `dining_chair`,
 /// `bar_stool`).

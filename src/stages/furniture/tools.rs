@@ -1,17 +1,16 @@
-//! Furniture stage: floor-standing furniture of one room. Its tools (on top of the shared
-//! ones in [`super::common`]) place objects at coordinates, against walls, in corners, in the
-//! open middle, around a table and facing a target; every placement is checked against the
-//! floor, the other furniture and the keep-out zones of doors and windows.
+//! The furniture stage's tools: place a piece at coordinates, against a wall, in a corner, in
+//! the open middle, around a table or facing a target, each checked against the floor, the
+//! other furniture and the keep-out zones of doors and windows.
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::common::{self, ObjectInfo, object_info};
-use super::placement::{Footprint, against_wall, find_floor_spot, keep_out_zones};
-use super::room::{RoomFrame, room_pose, wall_side, wrap_angle, yaw_facing};
-use super::{RoutedAsset, StageState};
 use crate::agents::{Access, CategorySpec, ToolError, Toolbox};
 use crate::scene::{ObjectKind, Pose, Support};
+use crate::stages::common::{self, ObjectInfo, object_info};
+use crate::stages::placement::{Footprint, against_wall, find_floor_spot, keep_out_zones};
+use crate::stages::room::{RoomFrame, room_pose, wall_side, wrap_angle, yaw_facing};
+use crate::stages::{RoutedAsset, StageState};
 
 /// Gap kept between furniture footprints, metres.
 pub const GAP: f64 = 0.05;

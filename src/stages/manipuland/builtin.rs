@@ -2,13 +2,13 @@
 
 use serde_json::{Value, json};
 
-use super::StageState;
-use super::manipuland::{items_on, surfaces};
+use super::surface::{items_on, surfaces};
 use crate::agents::{
     AgentCx, AgentError, Critic, Critique, DesignRequest, Designer, Issue, Role, Score,
 };
 use crate::plan::{Arrangement, Want};
 use crate::scene::ObjectKind;
+use crate::stages::StageState;
 
 /// The built-in manipuland designer.
 #[derive(Debug, Default)]
