@@ -6,10 +6,11 @@
 //! output is SDFormat plus Drake model directives.
 //!
 //! Modules follow the pipeline (see `ARCHITECTURE` in the README):
-//! [`prompt`] reads the prompt, [`plan`] says what each room should contain, [`layout`] builds
-//! rooms and architecture, [`stages`] place objects, [`assets`] make them, [`state`] holds the
-//! scene with its built assets, [`physics`] checks them (parry3d in-process, Drake through the
-//! bridge), [`formats`] write the scene directory, [`pipeline`] ties the run together.
+//! [`words`] says what words are (tokens, lexicon, WordNet), [`prompt`] reads the prompt,
+//! [`plan`] says what each room should contain, [`layout`] builds rooms and architecture,
+//! [`stages`] place objects, [`assets`] make them, [`state`] holds the scene with its built
+//! assets, [`physics`] checks them (parry3d in-process, Drake through the bridge), [`formats`]
+//! write the scene directory, [`pipeline`] ties the run together.
 //!
 //! This crate does not render, simulate or plan by itself: Drake (through `drake_bridge/`)
 //! does the simulation.
@@ -35,3 +36,4 @@ pub mod scene;
 pub mod stages;
 pub mod state;
 pub mod util;
+pub mod words;

@@ -22,12 +22,6 @@ type Edges = BTreeMap<(String, String), String>;
 const KNOWN_BACK_EDGES: &[(&str, &str, &str)] = &[
     (
         "knowledge",
-        "prompt",
-        "the room registry matches room words with the reader's tokenizer and lexicon, which \
-         should sit below both",
-    ),
-    (
-        "knowledge",
         "assets",
         "the room registry checks its materials against the materials table in assets",
     ),

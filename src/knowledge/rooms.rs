@@ -358,7 +358,7 @@ impl Registry {
         let mut max_words = 1;
         for (key, t) in &types {
             for w in &t.words {
-                let toks = crate::prompt::tokenize(w).join(" ");
+                let toks = crate::words::tokenize(w).join(" ");
                 let clash = words
                     .get(w)
                     .or_else(|| tokenized.get(&toks).filter(|a| *a != key));
