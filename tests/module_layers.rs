@@ -21,11 +21,6 @@ type Edges = BTreeMap<(String, String), String>;
 /// Back edges not yet removed, each with why it is still there. Remove an entry with the edge.
 const KNOWN_BACK_EDGES: &[(&str, &str, &str)] = &[
     (
-        "knowledge",
-        "assets",
-        "the room registry checks its materials against the materials table in assets",
-    ),
-    (
         "assets",
         "formats",
         "external and library assets are read with the glTF, OBJ and XML readers in formats, \
