@@ -1,8 +1,11 @@
 //! One run end to end: prompt -> layout -> furnishing -> write -> Drake check, and the
-//! stand-alone `check` of a scene directory.
+//! stand-alone `check` of a scene directory; [`asset`] is the `asset` command's run (route one
+//! description, write its asset directories).
 //!
 //! A run builds everything in a staging directory next to the output and only replaces the
 //! output when every step, including the Drake check, succeeded.
+
+pub mod asset;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

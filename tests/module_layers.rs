@@ -21,12 +21,6 @@ type Edges = BTreeMap<(String, String), String>;
 /// Back edges not yet removed, each with why it is still there. Remove an entry with the edge.
 const KNOWN_BACK_EDGES: &[(&str, &str, &str)] = &[
     (
-        "assets",
-        "formats",
-        "external and library assets are read with the glTF, OBJ and XML readers in formats, \
-         and the asset command writes an asset directory with formats::sdf",
-    ),
-    (
         "export",
         "pipeline",
         "the MJCF, USD and GLB unit tests build their scenes with the pipeline",

@@ -20,10 +20,10 @@ use super::view::{AssetView, Hold, ObjectView, SceneView};
 use super::{ExportError, ExportFile};
 use super::{num as fmt_num, nums};
 use crate::assets::{JointKind, Link};
-use crate::formats::obj::convex_to_obj;
-use crate::formats::xml::El;
 use crate::geometry::TriMesh;
+use crate::geometry::obj::convex_to_obj;
 use crate::scene::Pose;
+use crate::util::xml::El;
 
 /// MuJoCo solver and contact options, chosen for objects resting stably on furniture.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -536,7 +536,7 @@ mod tests {
         let obj = visual_obj(&mesh);
         assert_eq!(obj.matches("\nvt ").count(), mesh.positions.len());
         assert_eq!(obj.matches("\nvn ").count(), mesh.positions.len());
-        let back = crate::formats::obj::parse_obj(&obj).unwrap();
+        let back = crate::geometry::obj::parse_obj(&obj).unwrap();
         assert_eq!(back.triangles.len(), mesh.triangles.len());
         // parse_obj flips v back to the top-left convention.
         let mut a: Vec<_> = mesh.uvs.iter().map(|u| [u[0], u[1]]).collect();
