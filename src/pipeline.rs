@@ -336,7 +336,7 @@ pub fn build_scene_with(
         None => {
             let layout = layout::stage::run_layout(prompt_text, seed, backend, &mut report.log)?;
             let mut state = SceneState::new(scene);
-            layout::stage::install_rooms(&mut state, &layout.rooms)?;
+            crate::state::install_rooms(&mut state, &layout.rooms)?;
             report.stages.push(layout.summary);
             store.save("layout", &state, &report.log);
             state

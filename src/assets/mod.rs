@@ -5,6 +5,7 @@
 //! have their bottom at z = 0 (centred in x and y), wall objects their back at y = 0, ceiling
 //! objects their top at z = 0. The first link is the root; its frame is the model frame.
 
+pub mod architecture;
 pub mod articulated;
 pub mod attributes;
 mod builder;
