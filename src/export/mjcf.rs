@@ -481,54 +481,6 @@ pub fn files(view: &SceneView<'_>) -> Result<Vec<ExportFile>, ExportError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pipeline::build_scene;
-    use crate::state::SceneState;
-
-    fn kitchen() -> SceneState {
-        build_scene(
-            "a kitchen with a table, two chairs, a cabinet, plates and mugs",
-            2,
-            "mjcf_unit",
-            &crate::agents::Backend::Builtin,
-        )
-        .unwrap()
-        .0
-    }
-
-    #[test]
-    fn one_collision_geom_per_piece_and_one_body_per_link() {
-        let state = kitchen();
-        let view = SceneView::new(&state).unwrap();
-        let files = files(&view).unwrap();
-        let xml = String::from_utf8(files[0].bytes.clone()).unwrap();
-        let pieces: usize = view
-            .objects
-            .iter()
-            .map(|o| view.asset_of(o).asset.collision_pieces())
-            .sum();
-        assert_eq!(xml.matches("class=\"collision\"").count(), pieces + 1);
-        let links: usize = view
-            .objects
-            .iter()
-            .map(|o| view.asset_of(o).asset.links.len())
-            .sum();
-        assert_eq!(xml.matches("<body ").count(), links);
-        let free = view.objects.iter().filter(|o| o.hold == Hold::Free).count();
-        assert_eq!(xml.matches("<freejoint ").count(), free);
-        assert!(xml.contains("type=\"hinge\""));
-        assert!(xml.contains("<exclude body1="));
-        assert!(xml.contains("angle=\"radian\""));
-        // Every referenced mesh file is written.
-        for f in xml.split("file=\"").skip(1) {
-            let name = &f[..f.find('"').unwrap()];
-            let path = if name.ends_with(".png") {
-                format!("textures/{name}")
-            } else {
-                format!("meshes/{name}")
-            };
-            assert!(files.iter().any(|x| x.path == path), "{path}");
-        }
-    }
 
     #[test]
     fn visual_obj_flips_v_and_keeps_normals() {
