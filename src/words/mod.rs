@@ -1,5 +1,5 @@
 //! What words are: prompt text split into tokens with their spans ([`tokens`]), the
-//! vocabulary of object nouns and word classes ([`lexicon`]), Princeton WordNet 3.0
+//! vocabulary of object nouns and word classes ([`lexicon`](mod@lexicon)), Princeton WordNet 3.0
 //! ([`wordnet`]) and grounding nouns in it ([`ground`]).
 //!
 //! The prompt reader (`prompt`), the room registry (`knowledge`) and the asset router
