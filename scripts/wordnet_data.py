@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Derives the compact WordNet 3.0 data set that `src/prompt/wordnet.rs` compiles in.
+"""Derives the compact WordNet 3.0 data set that `src/words/wordnet.rs` compiles in.
 
 Reads Princeton WordNet 3.0 as Debian's `wordnet-base` package ships it (index.noun,
 data.noun, index.adj, index.verb, index.adv, the four *.exc files and cntlist.rev) and writes
@@ -245,7 +245,7 @@ def licence_text(copyright_path):
 README = """\
 # WordNet 3.0, derived data
 
-Compact extract of Princeton WordNet 3.0 read by `src/prompt/wordnet.rs`. WordNet 3.0
+Compact extract of Princeton WordNet 3.0 read by `src/words/wordnet.rs`. WordNet 3.0
 Copyright 2006 by Princeton University; the licence is in `LICENSE` (copied verbatim from
 the copyright file of Debian's `wordnet-base` package) and must accompany every copy.
 

@@ -5,11 +5,17 @@
 //! collision geometry, mass, inertia, friction and articulated doors and drawers. The native
 //! output is SDFormat plus Drake model directives.
 //!
-//! Modules follow the pipeline (see `ARCHITECTURE` in the README):
-//! [`prompt`] reads the prompt, [`plan`] says what each room should contain, [`layout`] builds
-//! rooms and architecture, [`stages`] place objects, [`assets`] make them, [`state`] holds the
-//! scene with its built assets, [`physics`] checks them (parry3d in-process, Drake through the
-//! bridge), [`formats`] write the scene directory, [`pipeline`] ties the run together.
+//! Modules follow the pipeline (see `Where the code lives` in the README):
+//! [`words`] says what words are (tokens, lexicon, WordNet), [`prompt`] reads the prompt,
+//! [`plan`] says what each room should contain, [`layout`] builds rooms, [`stages`] place
+//! objects, [`assets`] make them (room architecture included), [`state`] holds the scene with
+//! its built assets, [`physics`] checks them (parry3d in-process, Drake through the bridge),
+//! [`formats`] write the scene directory, [`render`] draws it, [`export`] writes MJCF, USD and
+//! GLB, [`pipeline`] ties the run together (and the `asset` command's run).
+//!
+//! They form layers without import cycles (`tests/module_layers.rs`), bottom to top: scene,
+//! geometry, util, words, knowledge, prompt, assets, state, agents, formats, physics, eval,
+//! plan, render, layout, stages, export, pipeline.
 //!
 //! This crate does not render, simulate or plan by itself: Drake (through `drake_bridge/`)
 //! does the simulation.
@@ -35,3 +41,4 @@ pub mod scene;
 pub mod stages;
 pub mod state;
 pub mod util;
+pub mod words;

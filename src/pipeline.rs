@@ -1,8 +1,11 @@
 //! One run end to end: prompt -> layout -> furnishing -> write -> Drake check, and the
-//! stand-alone `check` of a scene directory.
+//! stand-alone `check` of a scene directory; [`asset`] is the `asset` command's run (route one
+//! description, write its asset directories).
 //!
 //! A run builds everything in a staging directory next to the output and only replaces the
 //! output when every step, including the Drake check, succeeded.
+
+pub mod asset;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -333,7 +336,7 @@ pub fn build_scene_with(
         None => {
             let layout = layout::stage::run_layout(prompt_text, seed, backend, &mut report.log)?;
             let mut state = SceneState::new(scene);
-            layout::stage::install_rooms(&mut state, &layout.rooms)?;
+            crate::state::install_rooms(&mut state, &layout.rooms)?;
             report.stages.push(layout.summary);
             store.save("layout", &state, &report.log);
             state

@@ -22,7 +22,8 @@ mod explicit;
 mod robustness;
 
 use crate::knowledge::{self, Knowledge, Place, RoomType};
-use crate::prompt::{self, Density, Lexicon, Reading, Support};
+use crate::prompt::{Density, Reading};
+use crate::words::{Lexicon, Support};
 
 /// How a piece is arranged.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -304,7 +305,7 @@ pub(crate) fn split_counts(
     let first = if items.len() > 1
         && total >= 4
         && !single(items[0])
-        && kept_in_numbers(crate::prompt::lexicon(), items[0])
+        && kept_in_numbers(crate::words::lexicon(), items[0])
     {
         total.div_ceil(2)
     } else {
@@ -435,7 +436,7 @@ pub fn plan_rooms(reading: &Reading) -> Vec<RoomPlan> {
 /// Builds the plan of room `room` of a reading: the room's mentions merged with its room
 /// type's defaults.
 pub fn plan_house_room(reading: &Reading, room: usize) -> RoomPlan {
-    let lex = prompt::lexicon();
+    let lex = crate::words::lexicon();
     let kb = knowledge::knowledge();
     let info = reading.rooms.get(room);
     let room_type = info.map_or(reading.room_type.as_str(), |r| r.room_type.as_str());
@@ -500,6 +501,7 @@ impl Builder<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::prompt;
 
     fn want<'a>(plan: &'a RoomPlan, noun: &str) -> &'a Want {
         plan.all_wants()

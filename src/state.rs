@@ -4,9 +4,11 @@
 
 use std::collections::BTreeMap;
 
+use crate::assets::architecture;
 use crate::assets::procedural::{self, AssetRequest};
 use crate::assets::{Asset, AssetError};
-use crate::scene::{ObjectKind, Pose, Scene, SceneObject, Support};
+use crate::geometry::GeometryError;
+use crate::scene::{ObjectKind, Pose, Room, Scene, SceneObject, Support};
 
 /// The scene being built and the assets it uses.
 #[derive(Debug, Clone)]
@@ -109,4 +111,31 @@ impl SceneState {
         self.assets.retain(|k, _| used.contains(k));
         self.scene.assets.retain(|k, _| used.contains(k));
     }
+}
+
+/// Adds the rooms to the scene, each with its static architecture object.
+pub fn install_rooms(state: &mut SceneState, rooms: &[Room]) -> Result<(), GeometryError> {
+    for room in rooms {
+        state.scene.ids.reserve(&room.id);
+        state.scene.rooms.push(room.clone());
+    }
+    for room in rooms {
+        let arch_id = format!("{}_architecture", room.id);
+        let asset = architecture::build_room_asset(room, &arch_id)?;
+        let asset_id = state.insert_asset(asset);
+        state.scene.ids.reserve(&arch_id);
+        state.scene.objects.push(SceneObject {
+            id: arch_id,
+            category: "room_architecture".into(),
+            name: None,
+            kind: ObjectKind::Architecture,
+            room: room.id.clone(),
+            asset: asset_id,
+            world_from_object: Pose::IDENTITY,
+            support: Support::World,
+            welded: true,
+            joint_positions: BTreeMap::new(),
+        });
+    }
+    Ok(())
 }

@@ -268,7 +268,7 @@ fn write_obj(path: &Path, scale: f64) {
     let mut m = mesh::box_mesh([0.0, 50.0, 0.0], [60.0, 100.0, 40.0]);
     m.append(&mesh::box_mesh([0.0, 80.0, 25.0], [10.0, 10.0, 10.0]));
     let m = m.scaled([scale; 3]);
-    std::fs::write(path, scenesmith::formats::obj::trimesh_to_obj(&m)).unwrap();
+    std::fs::write(path, scenesmith::geometry::obj::trimesh_to_obj(&m)).unwrap();
 }
 
 #[test]

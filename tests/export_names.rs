@@ -121,7 +121,7 @@ fn hostile_names_give_valid_escaped_contained_files() {
     let m = mujoco(&mut bridge, &dir, 0.2, &[]);
     assert!(m.finite);
     let xml = std::fs::read_to_string(dir.join("export/mujoco/scene.xml")).unwrap();
-    let root = scenesmith::formats::xml::parse(&xml).unwrap();
+    let root = scenesmith::util::xml::parse(&xml).unwrap();
     let data = root
         .find("custom")
         .unwrap()
@@ -167,5 +167,5 @@ fn hostile_names_give_valid_escaped_contained_files() {
             .iter()
             .any(|n| n["extras"]["id"] == "weird \"obj\" ../tür")
     );
-    assert!(scenesmith::formats::gltf_read::parse(&glb, None).is_ok());
+    assert!(scenesmith::assets::gltf_read::parse(&glb, None).is_ok());
 }

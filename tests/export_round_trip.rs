@@ -98,7 +98,7 @@ fn masses_colliders_and_objects_match_in_every_format() {
         })
         .sum();
     let glb = std::fs::read(dir.path().join("export/scene.glb")).unwrap();
-    let parts = scenesmith::formats::gltf_read::parse(&glb, None).unwrap();
+    let parts = scenesmith::assets::gltf_read::parse(&glb, None).unwrap();
     assert_eq!(
         parts.iter().map(|p| p.mesh.triangles.len()).sum::<usize>(),
         tris

@@ -5,11 +5,12 @@ use scenesmith::agents::Backend;
 use scenesmith::agents::RunLog;
 use scenesmith::formats::scene_dir::write_scene_dir;
 use scenesmith::geometry::polygon;
-use scenesmith::layout::stage::{install_rooms, run_layout};
+use scenesmith::layout::stage::run_layout;
 use scenesmith::physics::Bridge;
 use scenesmith::physics::protocol::{DropSpheres, DropSpheresArgs, Load, SceneFiles, SphereDrop};
 use scenesmith::scene::Scene;
 use scenesmith::state::SceneState;
+use scenesmith::state::install_rooms;
 
 const HOUSE: &str = "A large family home with a master bedroom, two kids bedrooms, a living \
     room, a kitchen, a dining room, a hallway, and two bathrooms. The kitchen is open to the \

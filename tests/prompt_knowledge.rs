@@ -2,7 +2,8 @@
 //! well-formed (sizes, materials, known nouns in the right stage, rule targets, counts).
 
 use scenesmith::knowledge::{self, Place};
-use scenesmith::prompt::{self, Support};
+use scenesmith::prompt;
+use scenesmith::words::{self, Support};
 
 fn materials() -> Vec<String> {
     let v: serde_json::Value =
@@ -113,7 +114,7 @@ fn every_dev_prompt_room_type_exists() {
 #[test]
 fn every_entry_is_well_formed() {
     let kb = knowledge::knowledge();
-    let lex = prompt::lexicon();
+    let lex = words::lexicon();
     let mats = materials();
     let known = |n: &str| lex.lookup(n).is_some_and(|e| e.noun == n);
     let mut problems: Vec<String> = Vec::new();

@@ -13,9 +13,10 @@ use std::sync::OnceLock;
 
 use proptest::prelude::*;
 use scenesmith::knowledge::knowledge;
-use scenesmith::prompt::ground::{self, Verdict};
-use scenesmith::prompt::wordnet::{Pos, wordnet};
-use scenesmith::prompt::{self, Count, Reading, Scope, lexicon};
+use scenesmith::prompt::{self, Count, Reading, Scope};
+use scenesmith::words::ground::{self, Verdict};
+use scenesmith::words::wordnet::{Pos, wordnet};
+use scenesmith::words::{self, lexicon};
 
 struct Pools {
     things: Vec<String>,
@@ -27,7 +28,7 @@ struct Pools {
 /// Words the reader treats as grammar or as a class of its own: never in a pool.
 fn special(w: &str) -> bool {
     let lex = lexicon();
-    let toks = prompt::tokenize(w);
+    let toks = words::tokenize(w);
     lex.is_function_word(w)
         || lex.landmark(w).is_some()
         || lex.is_non_object(w)

@@ -2,15 +2,15 @@
 //! corner views see into the room through the cut-away walls, asset previews fill their
 //! frame, contact sheets lay images out, and everything is byte-for-byte repeatable.
 
+use scenesmith::assets::architecture::build_room_asset;
 use scenesmith::assets::procedural::{self, AssetRequest};
 use scenesmith::assets::{Asset, LinkBuilder, material};
-use scenesmith::layout::architecture::build_room_asset;
-use scenesmith::layout::rectangle_walls;
 use scenesmith::render::image::Image;
 use scenesmith::render::plan::{PlanOptions, plan_view};
 use scenesmith::render::scene::{RenderScene, Role};
 use scenesmith::render::views::{RoomViewOptions, room_views};
 use scenesmith::render::{asset_preview, contact_sheet, write_standard_views};
+use scenesmith::scene::rectangle_walls;
 use scenesmith::scene::{
     ObjectKind, Opening, OpeningKind, Pose, Room, Scene, SceneObject, Support,
 };

@@ -13,9 +13,9 @@ use scenesmith::assets::cache::AssetCache;
 use scenesmith::assets::external::vhacd::{self, VhacdOptions};
 use scenesmith::assets::procedural::{self, AssetRequest};
 use scenesmith::assets::router::{RouteRequest, RouterContext, Stage, route};
-use scenesmith::formats::obj::trimesh_to_obj;
 use scenesmith::geometry::TriMesh;
 use scenesmith::geometry::mesh::recompute_normals;
+use scenesmith::geometry::obj::trimesh_to_obj;
 
 /// A closed tube of radius `r` around a closed curve sampled at `n` points, `sides` around.
 fn tube(curve: impl Fn(f64) -> [f64; 3], n: usize, sides: usize, r: f64) -> TriMesh {

@@ -355,9 +355,8 @@ impl AssetDto {
             for v in l.visuals {
                 let texture = match v.texture {
                     Some(t) => {
-                        let png = crate::formats::gltf_read::base64_decode(&t.png_base64)?;
-                        let (width, height, rgba) =
-                            crate::formats::gltf_read::decode_png_rgba(&png)?;
+                        let png = crate::util::base64::decode(&t.png_base64)?;
+                        let (width, height, rgba) = crate::util::png::decode_rgba(&png)?;
                         Some(Texture {
                             name: t.name,
                             width,
@@ -475,7 +474,7 @@ mod tests {
         assert_eq!(base64_encode(b"foobar"), "Zm9vYmFy");
         let bytes: Vec<u8> = (0..=255).collect();
         assert_eq!(
-            crate::formats::gltf_read::base64_decode(&base64_encode(&bytes)).unwrap(),
+            crate::util::base64::decode(&base64_encode(&bytes)).unwrap(),
             bytes
         );
     }

@@ -139,4 +139,24 @@ mod tests {
             assert!(s > 0.0 && s < 0.5, "{n}: spread {s}");
         }
     }
+
+    /// The room registry names materials of this table (room type floors and walls, prompt
+    /// material words, wet-room floors) but sits below `assets`, so it cannot check them when
+    /// it loads; this test does, where both are visible.
+    #[test]
+    fn every_material_the_room_registry_names_is_in_the_table() {
+        let registry = crate::knowledge::rooms::Registry::compiled().unwrap();
+        for (key, t) in registry.types() {
+            for m in [&t.floor, &t.wall] {
+                assert!(
+                    material(m).is_some(),
+                    "room type {key}: unknown material {m:?}"
+                );
+            }
+        }
+        let h = registry.house();
+        for m in h.materials.values().chain(&h.wet_floor_materials) {
+            assert!(material(m).is_some(), "_house: unknown material {m:?}");
+        }
+    }
 }

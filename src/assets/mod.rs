@@ -5,14 +5,14 @@
 //! have their bottom at z = 0 (centred in x and y), wall objects their back at y = 0, ceiling
 //! objects their top at z = 0. The first link is the root; its frame is the model frame.
 
+pub mod architecture;
 pub mod articulated;
 pub mod attributes;
 mod builder;
 pub mod cache;
 pub mod catalog;
-pub mod command;
 pub mod external;
-pub mod files;
+pub mod gltf_read;
 pub mod material;
 pub mod physical;
 pub mod procedural;

@@ -442,7 +442,8 @@ pub(crate) fn run_asset(
     size: Option<[f64; 3]>,
     seed: u64,
 ) -> anyhow::Result<ExitCode> {
-    use scenesmith::assets::{command, router};
+    use scenesmith::assets::router;
+    use scenesmith::pipeline::asset as command;
     let opts = command::AssetOptions {
         description,
         out,

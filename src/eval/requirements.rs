@@ -27,8 +27,8 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use super::EvalError;
 use crate::formats::FormatError;
 use crate::knowledge::knowledge;
-use crate::prompt::lexicon::lexicon;
 use crate::scene::{ObjectKind, Room, Scene, SceneObject};
+use crate::words::lexicon::lexicon;
 
 /// File name of the report in a scene directory.
 pub const REQUIREMENTS_REPORT_JSON: &str = "requirements_report.json";

@@ -20,10 +20,10 @@ use super::view::{AssetView, Hold, ObjectView, SceneView};
 use super::{ExportError, ExportFile};
 use super::{num as fmt_num, nums};
 use crate::assets::{JointKind, Link};
-use crate::formats::obj::convex_to_obj;
-use crate::formats::xml::El;
 use crate::geometry::TriMesh;
+use crate::geometry::obj::convex_to_obj;
 use crate::scene::Pose;
+use crate::util::xml::El;
 
 /// MuJoCo solver and contact options, chosen for objects resting stably on furniture.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -481,54 +481,6 @@ pub fn files(view: &SceneView<'_>) -> Result<Vec<ExportFile>, ExportError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pipeline::build_scene;
-    use crate::state::SceneState;
-
-    fn kitchen() -> SceneState {
-        build_scene(
-            "a kitchen with a table, two chairs, a cabinet, plates and mugs",
-            2,
-            "mjcf_unit",
-            &crate::agents::Backend::Builtin,
-        )
-        .unwrap()
-        .0
-    }
-
-    #[test]
-    fn one_collision_geom_per_piece_and_one_body_per_link() {
-        let state = kitchen();
-        let view = SceneView::new(&state).unwrap();
-        let files = files(&view).unwrap();
-        let xml = String::from_utf8(files[0].bytes.clone()).unwrap();
-        let pieces: usize = view
-            .objects
-            .iter()
-            .map(|o| view.asset_of(o).asset.collision_pieces())
-            .sum();
-        assert_eq!(xml.matches("class=\"collision\"").count(), pieces + 1);
-        let links: usize = view
-            .objects
-            .iter()
-            .map(|o| view.asset_of(o).asset.links.len())
-            .sum();
-        assert_eq!(xml.matches("<body ").count(), links);
-        let free = view.objects.iter().filter(|o| o.hold == Hold::Free).count();
-        assert_eq!(xml.matches("<freejoint ").count(), free);
-        assert!(xml.contains("type=\"hinge\""));
-        assert!(xml.contains("<exclude body1="));
-        assert!(xml.contains("angle=\"radian\""));
-        // Every referenced mesh file is written.
-        for f in xml.split("file=\"").skip(1) {
-            let name = &f[..f.find('"').unwrap()];
-            let path = if name.ends_with(".png") {
-                format!("textures/{name}")
-            } else {
-                format!("meshes/{name}")
-            };
-            assert!(files.iter().any(|x| x.path == path), "{path}");
-        }
-    }
 
     #[test]
     fn visual_obj_flips_v_and_keeps_normals() {
@@ -536,7 +488,7 @@ mod tests {
         let obj = visual_obj(&mesh);
         assert_eq!(obj.matches("\nvt ").count(), mesh.positions.len());
         assert_eq!(obj.matches("\nvn ").count(), mesh.positions.len());
-        let back = crate::formats::obj::parse_obj(&obj).unwrap();
+        let back = crate::geometry::obj::parse_obj(&obj).unwrap();
         assert_eq!(back.triangles.len(), mesh.triangles.len());
         // parse_obj flips v back to the top-left convention.
         let mut a: Vec<_> = mesh.uvs.iter().map(|u| [u[0], u[1]]).collect();

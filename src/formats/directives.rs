@@ -10,8 +10,8 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 use serde_saphyr::{FlowSeq, Tagged};
 
-use crate::formats::xml::El;
 use crate::scene::{ObjectKind, Pose, Scene};
+use crate::util::xml::El;
 
 /// Which objects a directives file leaves free.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

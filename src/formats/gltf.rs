@@ -417,3 +417,107 @@ mod tests {
         assert_eq!(doc["materials"].as_array().unwrap().len(), 1);
     }
 }
+
+/// The reader ([`crate::assets::gltf_read`]) reads back what this writer wrote.
+#[cfg(test)]
+mod read_back {
+    use serde_json::Value;
+
+    use super::{GltfBuilder, link_visual_gltf};
+    use crate::assets::gltf_read::{parse, read_file};
+    use crate::assets::{Texture, VisualPart};
+    use crate::geometry::mesh::box_mesh;
+    use crate::scene::Pose;
+
+    fn part(textured: bool) -> VisualPart {
+        let mesh = box_mesh([0.1, 0.2, 0.5], [1.0, 2.0, 1.0]);
+        VisualPart {
+            name: "p".into(),
+            mesh: if textured {
+                mesh.with_box_uvs(0.5)
+            } else {
+                mesh
+            },
+            color: [0.5, 0.25, 0.125, 1.0],
+            texture: textured.then(|| Texture {
+                name: "tex".into(),
+                width: 2,
+                height: 2,
+                rgba: std::sync::Arc::new(vec![
+                    255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255,
+                ]),
+            }),
+        }
+    }
+
+    #[test]
+    fn reads_back_what_the_writer_wrote() {
+        let dir = tempfile::tempdir().unwrap();
+        let link = link_visual_gltf("body", &[part(true), part(false)], "body.bin");
+        std::fs::write(dir.path().join("body.gltf"), &link.gltf).unwrap();
+        std::fs::write(dir.path().join("body.bin"), &link.bin).unwrap();
+        for (name, png) in &link.images {
+            std::fs::write(dir.path().join(name), png).unwrap();
+        }
+        let parts = read_file(&dir.path().join("body.gltf")).unwrap();
+        assert_eq!(parts.len(), 2);
+        let (lo, hi) = parts[1].mesh.bounds().unwrap();
+        for (a, b) in lo.iter().zip([-0.4, -0.8, 0.0]) {
+            assert!((a - b).abs() < 1e-6, "{lo:?}");
+        }
+        for (a, b) in hi.iter().zip([0.6, 1.2, 1.0]) {
+            assert!((a - b).abs() < 1e-6, "{hi:?}");
+        }
+        let tex = parts[0].texture.as_ref().unwrap();
+        assert_eq!((tex.width, tex.height), (2, 2));
+        assert_eq!(&tex.rgba[0..4], &[255, 0, 0, 255]);
+        assert_eq!(parts[1].color, [0.5, 0.25, 0.125, 1.0]);
+    }
+
+    #[test]
+    fn glb_with_node_transform() {
+        let mut b = GltfBuilder::new_embedded();
+        let m = b.add_mesh("m", &[part(false)]);
+        let n = b.add_node(
+            "n",
+            Some(m),
+            Some(&Pose::from_xyz_yaw(
+                2.0,
+                0.0,
+                0.0,
+                std::f64::consts::FRAC_PI_2,
+            )),
+            vec![],
+        );
+        b.add_root(n);
+        let parts = parse(&b.to_glb(), None).unwrap();
+        let (lo, hi) = parts[0].mesh.bounds().unwrap();
+        // Rotated 90 degrees about z then moved +2 in x: x extent 2 - 1.2 .. 2 + 0.8.
+        assert!(
+            (lo[0] - 0.8).abs() < 1e-5 && (hi[0] - 2.8).abs() < 1e-5,
+            "{lo:?} {hi:?}"
+        );
+    }
+
+    #[test]
+    fn a_hostile_count_is_an_error_not_an_allocation() {
+        let dir = tempfile::tempdir().unwrap();
+        let link = link_visual_gltf("body", &[part(false)], "body.bin");
+        std::fs::write(dir.path().join("body.bin"), &link.bin).unwrap();
+        let doc: Value = serde_json::from_str(&link.gltf).unwrap();
+        let accessors = doc["accessors"].as_array().unwrap().len();
+        for count in [1u64 << 60, u64::MAX / 2, 1 << 30] {
+            for i in 0..accessors {
+                let mut hostile = doc.clone();
+                hostile["accessors"][i]["count"] = count.into();
+                let path = dir.path().join(format!("hostile_{i}.gltf"));
+                std::fs::write(&path, serde_json::to_vec(&hostile).unwrap()).unwrap();
+                let err = read_file(&path).unwrap_err();
+                assert!(
+                    err.contains("exceeds"),
+                    "accessor {i}, count {count}: {err}"
+                );
+            }
+        }
+    }
+}

@@ -1,14 +1,12 @@
-//! Writers for every file format the project produces, each from the one scene model, and
-//! the scene directory that holds them.
+//! Writers for every file format the project produces, each from the one scene model, the
+//! scene directory that holds them and the directory of one asset (`asset_dir`).
 
+pub mod asset_dir;
 pub mod directives;
 pub mod gltf;
-pub mod gltf_read;
-pub mod obj;
 pub mod scene_dir;
 pub mod sdf;
 pub mod sdf_read;
-pub mod xml;
 
 /// What can go wrong writing or reading scene files.
 #[derive(Debug, thiserror::Error)]

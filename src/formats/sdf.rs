@@ -8,9 +8,9 @@
 use crate::assets::material::HYDROELASTIC_MODULUS_PA;
 use crate::assets::{Asset, Link};
 use crate::formats::gltf::link_visual_gltf;
-use crate::formats::obj::convex_to_obj;
-use crate::formats::xml::{El, fmt_num, nums};
+use crate::geometry::obj::convex_to_obj;
 use crate::scene::Pose;
+use crate::util::xml::{El, fmt_num, nums};
 
 /// A file of an asset directory: path relative to the directory, and its bytes.
 #[derive(Debug, Clone, PartialEq)]

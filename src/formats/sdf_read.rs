@@ -4,11 +4,12 @@
 
 use std::path::Path;
 
+use crate::assets::gltf_read;
 use crate::assets::{Asset, Contact, Joint, JointKind, Link};
-use crate::formats::xml::{self, El};
-use crate::formats::{gltf_read, obj};
 use crate::geometry::MassProps;
+use crate::geometry::obj;
 use crate::scene::{AssetRecord, Pose};
+use crate::util::xml::{self, El};
 
 fn pose_of(el: &El) -> Result<Pose, String> {
     match el.child_nums("pose") {

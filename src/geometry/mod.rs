@@ -4,6 +4,7 @@
 pub mod convex;
 pub mod mass;
 pub mod mesh;
+pub mod obj;
 pub mod penetration;
 pub mod polygon;
 

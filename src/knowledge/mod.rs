@@ -7,7 +7,7 @@
 //! Room types live in the room registry ([`rooms`], one file per type under
 //! `src/data/rooms/`), the room-independent defaults in `src/data/knowledge/objects.json`; both
 //! are compiled in. This module loads and checks them and answers lookups; it does not read
-//! prompts (see [`crate::prompt`]) or plan rooms (the room plans do, `plan`).
+//! prompts (`prompt` does) or plan rooms (the room plans do, `plan`).
 
 pub mod rooms;
 
@@ -17,7 +17,7 @@ use std::sync::OnceLock;
 
 use serde::{Deserialize, Serialize};
 
-use crate::prompt::tokens::Token;
+use crate::words::tokens::Token;
 
 pub use rooms::{Registry, Role, RoomType, RoomsError, SizeRange};
 
@@ -243,9 +243,9 @@ impl Knowledge {
     /// The longest room-type phrase starting at `tokens[at]`: (words used, type key). Plurals
     /// are read in the singular ("exam rooms").
     pub fn room_type_at(&self, tokens: &[Token], at: usize) -> Option<(usize, &str)> {
-        let lex = crate::prompt::lexicon::lexicon();
+        let lex = crate::words::lexicon::lexicon();
         for len in (1..=self.rooms.max_words()).rev() {
-            let Some(words) = crate::prompt::lexicon::words_at(tokens, at, len) else {
+            let Some(words) = crate::words::lexicon::words_at(tokens, at, len) else {
                 continue;
             };
             let raw = words.join(" ");
@@ -318,7 +318,7 @@ pub fn check_compiled() -> Result<Knowledge, KnowledgeError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::prompt::tokens::lex;
+    use crate::words::tokens::lex;
 
     #[test]
     fn compiled_knowledge_parses() {

@@ -358,7 +358,7 @@ impl Registry {
         let mut max_words = 1;
         for (key, t) in &types {
             for w in &t.words {
-                let toks = crate::prompt::tokenize(w).join(" ");
+                let toks = crate::words::tokenize(w).join(" ");
                 let clash = words
                     .get(w)
                     .or_else(|| tokenized.get(&toks).filter(|a| *a != key));
@@ -512,11 +512,6 @@ fn check_type(
     if !(0.0..t.wall_height).contains(&t.sill) {
         return bad(format!("sill {} outside the wall", t.sill));
     }
-    for m in [&t.floor, &t.wall] {
-        if crate::assets::material::material(m).is_none() {
-            return bad(format!("unknown material {m:?}"));
-        }
-    }
     for rule in &t.adjacency {
         if rule.next_to.is_empty() {
             return bad("an adjacency rule names no type".into());
@@ -581,11 +576,6 @@ fn check_house(h: &HouseTables, types: &BTreeMap<String, RoomType>) -> Result<()
         .chain(h.count_words.values())
     {
         known("items_to_rooms or count_words", t)?;
-    }
-    for m in h.materials.values().chain(&h.wet_floor_materials) {
-        if crate::assets::material::material(m).is_none() {
-            return Err(invalid("_house", format!("unknown material {m:?}")));
-        }
     }
     Ok(())
 }

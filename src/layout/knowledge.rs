@@ -60,7 +60,7 @@ pub fn room_words() -> &'static [(Vec<String>, String)] {
             .flat_map(|(key, k)| {
                 k.words
                     .iter()
-                    .map(move |w| (crate::prompt::tokenize(w), key.clone()))
+                    .map(move |w| (crate::words::tokenize(w), key.clone()))
             })
             .filter(|(t, _)| !t.is_empty())
             .collect();

@@ -26,7 +26,7 @@ pub struct MaterialInfo {
 /// The material a description names, if any (two-word phrases before single words, later
 /// words before earlier ones: the head noun comes last).
 pub fn lookup(description: &str) -> Option<MaterialInfo> {
-    let toks = crate::prompt::tokenize(description);
+    let toks = crate::words::tokenize(description);
     let mut found: Option<(String, &'static str)> = None;
     'outer: for n in [2usize, 1] {
         for i in (0..toks.len().saturating_sub(n - 1)).rev() {

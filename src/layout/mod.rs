@@ -5,12 +5,11 @@
 //! The data flows: [`brief`] reads the prompt into rooms (counts, en-suites, the sentences
 //! about each room), [`spec`] sizes them (type sizes, size words, contents) and decides who
 //! may be entered from whom, [`search`] places them edge to edge as [`cells`], [`connect`]
-//! plans doors and windows, [`walls`] builds the scene rooms, [`validate`] checks them,
-//! [`architecture`] turns a room into its static asset. [`state`], [`tools`], [`builtin`] and
+//! plans doors and windows, [`walls`] builds the scene rooms, [`validate`] checks them (the
+//! room's static asset is built by `assets::architecture`). [`state`], [`tools`], [`builtin`] and
 //! [`stage`] run all of it as an agent-loop stage; [`ascii`] draws a text floor plan.
 //! Furnishing the rooms is not done here.
 
-pub mod architecture;
 pub mod ascii;
 pub mod brief;
 pub mod builtin;
@@ -30,7 +29,7 @@ use rand::RngExt;
 use rand::rngs::ChaCha8Rng;
 
 use crate::prompt::Reading;
-use crate::scene::{Opening, OpeningKind, Room, Wall};
+use crate::scene::{Opening, OpeningKind, Room, rectangle_walls};
 
 /// Default wall thickness, metres.
 pub const WALL_THICKNESS: f64 = 0.12;
@@ -38,34 +37,6 @@ pub const WALL_THICKNESS: f64 = 0.12;
 pub const DOOR_SIZE: [f64; 2] = [0.9, 2.1];
 /// Standard window: width, height, sill (metres).
 pub const WINDOW_SIZE: [f64; 3] = [1.2, 1.2, 0.9];
-
-/// Four walls around a `w x d` clear floor whose lower-left interior corner is at `origin`.
-///
-/// Walls run counter-clockwise (south, east, north, west) with centre lines `thickness / 2`
-/// outside the clear floor, so every wall frame's +Y points into the room.
-pub fn rectangle_walls(
-    room_id: &str,
-    origin: [f64; 2],
-    w: f64,
-    d: f64,
-    thickness: f64,
-) -> Vec<Wall> {
-    let h = thickness / 2.0;
-    let (x0, y0) = (origin[0] - h, origin[1] - h);
-    let (x1, y1) = (origin[0] + w + h, origin[1] + d + h);
-    let corners = [[x0, y0], [x1, y0], [x1, y1], [x0, y1]];
-    (0..4)
-        .map(|i| Wall {
-            id: format!("{room_id}_wall_{i}"),
-            start: corners[i],
-            end: corners[(i + 1) % 4],
-            thickness,
-            neighbor: None,
-            openings: Vec::new(),
-            mirror_of: None,
-        })
-        .collect()
-}
 
 /// One room for the whole prompt without the layout stage: clear floor from the type's typical
 /// size (scaled by size words inside the type's range, then jittered by the seed), a door in

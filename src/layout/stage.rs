@@ -1,9 +1,6 @@
-//! Runs the layout stage through the agent loop (built-in or LLM backend) and installs its
-//! rooms in a scene: one static architecture object per room.
+//! Runs the layout stage through the agent loop (built-in or LLM backend); installing its rooms
+//! in a scene is [`crate::state::install_rooms`].
 
-use std::collections::BTreeMap;
-
-use super::architecture;
 use super::builtin::{BuiltinLayoutCritic, BuiltinLayoutDesigner};
 use super::state::LayoutState;
 use super::tools;
@@ -13,10 +10,8 @@ use crate::agents::{
     AgentError, Backend, BuiltinOrchestrator, Critic, Designer, Orchestrator, RunLog, StageConfig,
     StageSpec, StageSummary, run_stage,
 };
-use crate::geometry::GeometryError;
 use crate::prompt::Reading;
-use crate::scene::{ObjectKind, Pose, Room, SceneObject, Support};
-use crate::state::SceneState;
+use crate::scene::Room;
 
 /// What the layout stage produced.
 #[derive(Debug, Clone)]
@@ -125,33 +120,6 @@ pub fn run_layout(
         },
         state,
     })
-}
-
-/// Adds the rooms to the scene, each with its static architecture object.
-pub fn install_rooms(state: &mut SceneState, rooms: &[Room]) -> Result<(), GeometryError> {
-    for room in rooms {
-        state.scene.ids.reserve(&room.id);
-        state.scene.rooms.push(room.clone());
-    }
-    for room in rooms {
-        let arch_id = format!("{}_architecture", room.id);
-        let asset = architecture::build_room_asset(room, &arch_id)?;
-        let asset_id = state.insert_asset(asset);
-        state.scene.ids.reserve(&arch_id);
-        state.scene.objects.push(SceneObject {
-            id: arch_id,
-            category: "room_architecture".into(),
-            name: None,
-            kind: ObjectKind::Architecture,
-            room: room.id.clone(),
-            asset: asset_id,
-            world_from_object: Pose::IDENTITY,
-            support: Support::World,
-            welded: true,
-            joint_positions: BTreeMap::new(),
-        });
-    }
-    Ok(())
 }
 
 /// The prompt reading the placement stages of `room` work from: its own prompt, with the

@@ -11,7 +11,8 @@ use super::{
 };
 use crate::assets::router::naming::footprint;
 use crate::knowledge::{KbItem, Place};
-use crate::prompt::{Density, Mention, Support};
+use crate::prompt::{Density, Mention};
+use crate::words::Support;
 
 /// Largest footprint of an optional piece that still comes along when the prompt lists its
 /// furniture, m² (a bookcase 0.3, a nightstand 0.2; a desk 0.7 and an armchair 0.6 do not).

@@ -9,7 +9,8 @@ use super::{
 };
 use crate::assets::router::parse::main_categories;
 use crate::knowledge::Place;
-use crate::prompt::{self, Count, GroupKind, Mention, Per, RelationKind, Support, Target};
+use crate::prompt::{self, Count, GroupKind, Mention, Per, RelationKind, Target};
+use crate::words::Support;
 
 /// The furniture that carries a small object the prompt puts somewhere on the floor.
 const STAND: &str = "side table";

@@ -7,9 +7,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::lexicon::Lexicon;
-use super::tokens::Token;
 use crate::knowledge::Knowledge;
+use crate::words::lexicon::Lexicon;
+use crate::words::tokens::Token;
 
 /// What the prompt says about an object besides its noun and count.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
@@ -170,8 +170,8 @@ fn suffixed_style(lex: &Lexicon, tokens: &[Token], at: usize) -> Option<Modifier
             !t.capitalized()
                 && (lex.verb(&t.text).is_some()
                     || (t.text.ends_with('s')
-                        && !super::wordnet::wordnet()
-                            .base_forms(&t.text, super::wordnet::Pos::Verb)
+                        && !crate::words::wordnet::wordnet()
+                            .base_forms(&t.text, crate::words::wordnet::Pos::Verb)
                             .is_empty()))
         });
         if verb_before {
@@ -311,11 +311,11 @@ pub(crate) fn modifier_at(
             end: 0,
             kind: if num.chars().all(|c| c.is_ascii_digit()) {
                 num.parse().map_or(
-                    super::tokens::TokenKind::Word,
-                    super::tokens::TokenKind::Number,
+                    crate::words::tokens::TokenKind::Word,
+                    crate::words::tokens::TokenKind::Number,
                 )
             } else {
-                super::tokens::TokenKind::Word
+                crate::words::tokens::TokenKind::Word
             },
         });
         if let Some(n) = n {
@@ -338,13 +338,13 @@ pub(crate) fn modifier_at(
         .is_some_and(|u| u.is_word() && !lex.is_function_word(&u.text));
     // Participles ("scattered", "folded", "hanging"), unless the word is a noun WordNet
     // knows as written ("flowerbed", "seaweed", "building").
-    let wn = super::wordnet::wordnet();
+    let wn = crate::words::wordnet::wordnet();
     // A gerund that is a noun too modifies a noun after it: "six reading tables".
-    let noun_lemma = wn.is_lemma(w, super::wordnet::Pos::Noun)
+    let noun_lemma = wn.is_lemma(w, crate::words::wordnet::Pos::Noun)
         && !tokens.get(at + 1).is_some_and(|u| {
             w.ends_with("ing")
                 && (lex.noun_at(tokens, at + 1).is_some()
-                    || wn.has_pos(&u.text, super::wordnet::Pos::Noun))
+                    || wn.has_pos(&u.text, crate::words::wordnet::Pos::Noun))
         });
     if w.contains('-')
         || (w.len() > 4 && w.ends_with("ed") && !noun_lemma)
@@ -376,11 +376,11 @@ pub(crate) fn modifier_at(
     }
     // WordNet's adjectives: "stylish", "somber"; one that is also a noun ("antique",
     // "quiet") modifies when a noun follows.
-    if wn.has_pos(w, super::wordnet::Pos::Adj) && !lex.is_non_object(w) {
-        let noun_too = wn.has_pos(w, super::wordnet::Pos::Noun);
+    if wn.has_pos(w, crate::words::wordnet::Pos::Adj) && !lex.is_non_object(w) {
+        let noun_too = wn.has_pos(w, crate::words::wordnet::Pos::Noun);
         let noun_next = next_wordish
             && tokens.get(at + 1).is_some_and(|u| {
-                wn.has_pos(&u.text, super::wordnet::Pos::Noun)
+                wn.has_pos(&u.text, crate::words::wordnet::Pos::Noun)
                     || lex.noun_at(tokens, at + 1).is_some()
                     || kb.room_type_at(tokens, at + 1).is_some()
             });
@@ -403,8 +403,8 @@ fn single(t: &Token, kind: ModKind) -> Modifier {
 mod tests {
     use super::*;
     use crate::knowledge::knowledge;
-    use crate::prompt::lexicon::lexicon;
-    use crate::prompt::tokens::lex;
+    use crate::words::lexicon::lexicon;
+    use crate::words::tokens::lex;
 
     fn mods(text: &str, at: usize) -> Vec<ModKind> {
         let t = lex(text);

@@ -6,11 +6,11 @@
 
 use std::ops::Range;
 
-use super::lexicon::Lexicon;
 pub(crate) use super::phrase::{Head, Np, Pronoun};
 use super::phrase::{parse_np, pronoun_np, quantifier_fits, word};
-use super::tokens::{Token, TokenKind};
 use crate::knowledge::Knowledge;
+use crate::words::lexicon::Lexicon;
+use crate::words::tokens::{Token, TokenKind};
 
 /// One chunk of a sentence.
 #[derive(Debug, Clone, PartialEq)]
@@ -293,8 +293,11 @@ fn wordnet_verb(lex: &Lexicon, tokens: &[Token], i: usize, out: &[Chunk]) -> Opt
     if !after_np || !inflected {
         return None;
     }
-    let wn = super::wordnet::wordnet();
-    if wn.base_forms(w, super::wordnet::Pos::Verb).is_empty() {
+    let wn = crate::words::wordnet::wordnet();
+    if wn
+        .base_forms(w, crate::words::wordnet::Pos::Verb)
+        .is_empty()
+    {
         return None;
     }
     let next_np = word(tokens, i + 1).is_some_and(|n| {
@@ -309,9 +312,9 @@ fn wordnet_verb(lex: &Lexicon, tokens: &[Token], i: usize, out: &[Chunk]) -> Opt
 mod tests {
     use super::*;
     use crate::knowledge::knowledge;
-    use crate::prompt::lexicon::lexicon;
     use crate::prompt::mentions::GroupKind;
-    use crate::prompt::tokens::{lex, sentences};
+    use crate::words::lexicon::lexicon;
+    use crate::words::tokens::{lex, sentences};
 
     fn chunks(text: &str) -> Vec<Item> {
         let t = lex(text);

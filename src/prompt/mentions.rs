@@ -8,8 +8,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::attributes::Attributes;
-use super::lexicon::Support;
 use super::relations::Relation;
+use crate::words::lexicon::Support;
 
 /// How many of something the prompt asks for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

@@ -7,34 +7,29 @@
 //! phrase is a data change. The reader does not decide what a room gets beyond what the prompt
 //! says; the room plans (`plan`) merge a reading with the room type's knowledge.
 //!
-//! Pipeline: [`tokens`] (words with spans and punctuation) -> `chunk` (noun phrases,
+//! Pipeline: [`crate::words::tokens`] (words with spans and punctuation) -> `chunk` (noun phrases,
 //! prepositions, verbs) -> [`rooms`] (house structure from the first sentence) -> `interpret`
 //! (clauses: subjects, holders, per-parent counts, references, relations) -> [`Reading`].
 
 pub mod attributes;
 mod chunk;
-pub mod ground;
 mod interpret;
-pub mod lexicon;
 pub mod mentions;
 mod phrase;
 pub mod relations;
 pub mod report;
 pub mod rooms;
-pub mod tokens;
-pub mod wordnet;
 
 use serde::{Deserialize, Serialize};
 
 pub use attributes::Attributes;
-pub use lexicon::{Lexicon, NounEntry, Support, lexicon};
 pub use mentions::{Count, Group, GroupKind, Mention, Per};
 pub use relations::{Relation, RelationKind, Target};
 pub use report::{NounReport, NounStatus};
 pub use rooms::{Density, RoomReading, Scope};
-pub use tokens::tokenize;
 
 use crate::knowledge::knowledge;
+use crate::words::{Lexicon, Support, lexicon, tokens};
 
 /// What the reader took from a prompt.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

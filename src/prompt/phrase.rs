@@ -5,12 +5,12 @@
 //! This module reads one phrase at a time; `chunk` decides where phrases start.
 
 use super::attributes::{Attributes, modifier_at};
-use super::ground::{self, Verdict};
-use super::lexicon::Lexicon;
 use super::mentions::GroupKind;
 use super::report::{NounReport, NounStatus};
-use super::tokens::Token;
 use crate::knowledge::Knowledge;
+use crate::words::ground::{self, Verdict};
+use crate::words::lexicon::Lexicon;
+use crate::words::tokens::Token;
 
 /// Pronouns the interpreter resolves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -532,7 +532,7 @@ impl<'a> Phrase<'a> {
             && i > self.sentence_start
             && word(self.tokens, i - 1).is_some_and(is_linking_verb)
             && !lex.is_plural(w)
-            && super::wordnet::wordnet().has_pos(w, super::wordnet::Pos::Adj);
+            && crate::words::wordnet::wordnet().has_pos(w, crate::words::wordnet::Pos::Adj);
         noun_len == 1 && (lex.is_ambiguous_bare(w) || predicate) && !evidence && !self.in_list
     }
 
@@ -696,7 +696,8 @@ impl<'a> Phrase<'a> {
         let last = start + n + len - 1;
         // "an antique barometer": a one-word noun that is also an adjective modifies.
         let adjective_first = n == 1
-            && super::wordnet::wordnet().has_pos(&tokens[start].text, super::wordnet::Pos::Adj);
+            && crate::words::wordnet::wordnet()
+                .has_pos(&tokens[start].text, crate::words::wordnet::Pos::Adj);
         if adjective_first {
             np.attrs.adjectives.push(tokens[start].text.clone());
             np.attrs.modifiers.push(tokens[start].raw.clone());
@@ -1060,13 +1061,13 @@ fn noun_follows(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], k: usize) -> bo
         return false;
     };
     let verb_s = x.ends_with('s')
-        && !super::wordnet::wordnet()
-            .base_forms(x, super::wordnet::Pos::Verb)
+        && !crate::words::wordnet::wordnet()
+            .base_forms(x, crate::words::wordnet::Pos::Verb)
             .is_empty();
-    let wn = super::wordnet::wordnet();
+    let wn = crate::words::wordnet::wordnet();
     // "three bedrooms upstairs": a word WordNet also reads as an adverb, and no object of
     // the lexicon, ends the phrase.
-    let adverb = lex.noun_at(tokens, k).is_none() && wn.has_pos(x, super::wordnet::Pos::Adv);
+    let adverb = lex.noun_at(tokens, k).is_none() && wn.has_pos(x, crate::words::wordnet::Pos::Adv);
     compound_word(lex, kb, tokens, k)
         && !adverb
         && (lex.noun_at(tokens, k).is_some() || ground::is_noun(x))
@@ -1105,13 +1106,13 @@ fn compound_tail(
     singular_det: bool,
 ) -> Option<(usize, Grounded)> {
     let mut len = 0;
-    let wn = super::wordnet::wordnet();
+    let wn = crate::words::wordnet::wordnet();
     // "cake stand", "music stand": a noun in its base form, even one the verb table lists.
     let tail_word = |k: usize| {
         let x = tokens[k].text.as_str();
         compound_word(lex, kb, tokens, k)
             || (lex.verb(x).is_some()
-                && wn.is_lemma(x, super::wordnet::Pos::Noun)
+                && wn.is_lemma(x, crate::words::wordnet::Pos::Noun)
                 && !x.ends_with('s')
                 && !x.ends_with("ed")
                 && !x.ends_with("ing")
@@ -1132,7 +1133,7 @@ fn compound_tail(
         // "A sturdy squat rack anchors the centre": a verb in -s after "a ...".
         && (!singular_det
             || !tokens[at + len].text.ends_with('s')
-            || wn.base_forms(&tokens[at + len].text, super::wordnet::Pos::Verb).is_empty()
+            || wn.base_forms(&tokens[at + len].text, crate::words::wordnet::Pos::Verb).is_empty()
             || wn_compound(at + len))
     {
         len += 1;
@@ -1145,8 +1146,12 @@ fn compound_tail(
     }
     let after = tokens.get(at + len);
     // "a bench vice bolted to ...": a participle after it ends the phrase too.
-    let participle =
-        |x: &str| x.ends_with("ed") && !wn.base_forms(x, super::wordnet::Pos::Verb).is_empty();
+    let participle = |x: &str| {
+        x.ends_with("ed")
+            && !wn
+                .base_forms(x, crate::words::wordnet::Pos::Verb)
+                .is_empty()
+    };
     let ends = after.is_none_or(|t| {
         !t.is_word()
             || lex.is_function_word(&t.text)
@@ -1308,7 +1313,7 @@ fn open_head(
             && singular_det
             && x.ends_with('s')
             && ground::only_other_pos(x).is_none()
-            && super::wordnet::wordnet().has_pos(x, super::wordnet::Pos::Verb)
+            && crate::words::wordnet::wordnet().has_pos(x, crate::words::wordnet::Pos::Verb)
             && at(k - 1).is_some_and(ground::is_noun)
         {
             break;
@@ -1333,7 +1338,8 @@ fn open_head(
             // A word WordNet also knows as an adjective stays a modifier unless it ends the run.
             let mut q = p;
             while q + 1 < words.len()
-                && super::wordnet::wordnet().has_pos(words[q], super::wordnet::Pos::Adj)
+                && crate::words::wordnet::wordnet()
+                    .has_pos(words[q], crate::words::wordnet::Pos::Adj)
             {
                 q += 1;
             }
@@ -1341,7 +1347,7 @@ fn open_head(
         })
         .unwrap_or(words.len() - 1);
     let name = &words[name_from..];
-    let wn = super::wordnet::wordnet();
+    let wn = crate::words::wordnet::wordnet();
     let last = words[words.len() - 1];
     let bare = np.det.is_none()
         && np.number.is_none()
@@ -1351,7 +1357,7 @@ fn open_head(
     let singular = ground::noun_lemma(last).is_some_and(|l| l == last);
     // "elegant and formal", "adds greenery": a bare word that is also an adjective, or a
     // bare singular outside a list, names no object.
-    let bare_reason = if bare && wn.has_pos(last, super::wordnet::Pos::Adj) {
+    let bare_reason = if bare && wn.has_pos(last, crate::words::wordnet::Pos::Adj) {
         Some("an adjective here (no determiner)")
     } else if bare && singular && !in_list {
         Some("a bare singular outside a list (a mass word here)")
@@ -1394,18 +1400,21 @@ fn open_head(
 /// ("common kitchen", "sleeping loft", "family bakery"): nouns that are no adjective, and
 /// gerunds. Describing adjectives ("spacious", "modern") stay out of the name.
 fn room_name(lex: &Lexicon, tokens: &[Token], from: usize, at: usize, words: String) -> String {
-    let wn = super::wordnet::wordnet();
+    let wn = crate::words::wordnet::wordnet();
     let mut name = words;
     let mut k = at;
     while k > from {
         let Some(w) = word(tokens, k - 1) else { break };
-        let noun = wn.has_pos(w, super::wordnet::Pos::Noun)
-            && !wn.has_pos(w, super::wordnet::Pos::Adj)
+        let noun = wn.has_pos(w, crate::words::wordnet::Pos::Noun)
+            && !wn.has_pos(w, crate::words::wordnet::Pos::Adj)
             && lex.material(w).is_none()
             && lex.color_at(tokens, k - 1).is_none()
             && lex.size_adjective(w).is_none()
             && lex.style_at(tokens, k - 1).is_none();
-        let gerund = w.ends_with("ing") && !wn.base_forms(w, super::wordnet::Pos::Verb).is_empty();
+        let gerund = w.ends_with("ing")
+            && !wn
+                .base_forms(w, crate::words::wordnet::Pos::Verb)
+                .is_empty();
         if !(noun || gerund) {
             break;
         }
@@ -1469,13 +1478,13 @@ fn room_compound(
         }
         let w = word(tokens, j + m - 1)?;
         // A word WordNet does not know at all ("cardio room") may name the room too.
-        let wn = super::wordnet::wordnet();
+        let wn = crate::words::wordnet::wordnet();
         let unknown = w.chars().all(char::is_alphabetic)
             && [
-                super::wordnet::Pos::Noun,
-                super::wordnet::Pos::Verb,
-                super::wordnet::Pos::Adj,
-                super::wordnet::Pos::Adv,
+                crate::words::wordnet::Pos::Noun,
+                crate::words::wordnet::Pos::Verb,
+                crate::words::wordnet::Pos::Adj,
+                crate::words::wordnet::Pos::Adv,
             ]
             .iter()
             .all(|&p| !wn.has_pos(w, p));
@@ -1621,7 +1630,7 @@ fn wordnet_room_words(w: &str) -> Option<(String, String)> {
 /// the first adverb ("potted plant", "walnut desk", "grand piano"). `from` is where the
 /// modifiers start, `at` where the noun starts.
 fn name_of(lex: &Lexicon, tokens: &[Token], from: usize, at: usize, noun: &str) -> String {
-    let wn = super::wordnet::wordnet();
+    let wn = crate::words::wordnet::wordnet();
     let mut name = noun.to_string();
     let mut k = at;
     while k > from {
@@ -1632,7 +1641,7 @@ fn name_of(lex: &Lexicon, tokens: &[Token], from: usize, at: usize, noun: &str) 
         // Every modifier of the noun stays in its name ("potted plant", "conical flask",
         // "terracotta pot", "mini fridge"), except an adverb: a name read this way still ends
         // with the noun, so it meets a label of the noun alone.
-        let describing = !(w.ends_with("ly") && wn.has_pos(w, super::wordnet::Pos::Adv));
+        let describing = !(w.ends_with("ly") && wn.has_pos(w, crate::words::wordnet::Pos::Adv));
         if !(known_compound || describing) {
             break;
         }

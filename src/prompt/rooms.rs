@@ -9,8 +9,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::chunk::{Chunk, Head, Item, Np};
-use super::lexicon::Lexicon;
-use super::tokens::Token;
+use crate::words::lexicon::Lexicon;
+use crate::words::tokens::Token;
 
 /// One room or a house of several.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -456,9 +456,10 @@ fn coerced_rooms(items: &[Chunk]) -> Vec<(usize, Np)> {
                     Head::Room { .. } => in_with = false,
                     Head::Object { noun, .. } if !in_with && !after_prep => {
                         let head = noun.rsplit(' ').next().unwrap_or(noun);
-                        let roomlike = super::ground::noun_info(head).is_some_and(|i| i.roomlike);
+                        let roomlike =
+                            crate::words::ground::noun_info(head).is_some_and(|i| i.roomlike);
                         if roomlike {
-                            let key = super::ground::room_family(head, &|n: &str| {
+                            let key = crate::words::ground::room_family(head, &|n: &str| {
                                 reg.room_type_of(n).is_some()
                             })
                             .and_then(|f| reg.room_type_of(&f.noun).map(str::to_string))
@@ -786,7 +787,7 @@ fn add_subject_rooms(lex: &Lexicon, sentences: &[Vec<Chunk>], st: &mut Structure
                         let before_list = list.is_some_and(|l| i < l);
                         !(before_list
                             && matches!(&np.head, Head::Room { key, words }
-                                if key == "room" && super::ground::is_building(words)))
+                                if key == "room" && crate::words::ground::is_building(words)))
                     })
             })
             .collect()

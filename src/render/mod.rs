@@ -30,9 +30,9 @@ pub use image::Image;
 pub use scene::RenderScene;
 pub use views::{asset_preview, contact_sheet, write_standard_views, write_views};
 
-use crate::layout::stage::install_rooms;
 use crate::scene::Room;
 use crate::state::SceneState;
+use crate::state::install_rooms;
 
 /// What can go wrong rendering.
 #[derive(Debug, thiserror::Error)]

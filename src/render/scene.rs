@@ -404,9 +404,8 @@ fn split_architecture(mesh: &RenderMesh, rooms: &[Room]) -> Vec<RenderMesh> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::layout::architecture::build_room_asset;
-    use crate::layout::rectangle_walls;
-    use crate::scene::{Scene, SceneObject, Support};
+    use crate::assets::architecture::build_room_asset;
+    use crate::scene::{Scene, SceneObject, Support, rectangle_walls};
 
     fn room() -> Room {
         Room {

@@ -482,6 +482,34 @@ impl Scene {
     }
 }
 
+/// Four walls around a `w x d` clear floor whose lower-left interior corner is at `origin`.
+///
+/// Walls run counter-clockwise (south, east, north, west) with centre lines `thickness / 2`
+/// outside the clear floor, so every wall frame's +Y points into the room.
+pub fn rectangle_walls(
+    room_id: &str,
+    origin: [f64; 2],
+    w: f64,
+    d: f64,
+    thickness: f64,
+) -> Vec<Wall> {
+    let h = thickness / 2.0;
+    let (x0, y0) = (origin[0] - h, origin[1] - h);
+    let (x1, y1) = (origin[0] + w + h, origin[1] + d + h);
+    let corners = [[x0, y0], [x1, y0], [x1, y1], [x0, y1]];
+    (0..4)
+        .map(|i| Wall {
+            id: format!("{room_id}_wall_{i}"),
+            start: corners[i],
+            end: corners[(i + 1) % 4],
+            thickness,
+            neighbor: None,
+            openings: Vec::new(),
+            mirror_of: None,
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -12,7 +12,7 @@
 
 use crate::assets::router::naming::footprint;
 use crate::plan::{Arrangement, Want, clutter_factor, one_per_parent, split_counts};
-use crate::prompt::{self, Density};
+use crate::prompt::Density;
 use crate::scene::{AssetRecord, SurfaceRecord};
 
 /// Share of a surface's area that the usual clutter covers, by kind of surface: a table or
@@ -106,7 +106,7 @@ pub fn sized_to(
     share: f64,
     budget: &mut u32,
 ) -> Vec<Want> {
-    let lex = prompt::lexicon();
+    let lex = crate::words::lexicon();
     let (open_area, enclosed_area) = clutter_area(rec, density);
     let single = |noun: &str| one_per_parent(lex, noun);
     let is_default =

@@ -324,8 +324,8 @@ pub fn room_pose(frame: &RoomFrame<'_>, x: f64, y: f64, yaw_deg: f64) -> Pose {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::layout::rectangle_walls;
     use crate::scene::Opening;
+    use crate::scene::rectangle_walls;
 
     fn room() -> Room {
         let mut walls = rectangle_walls("r", [0.0, 0.0], 4.0, 3.0, 0.1);

@@ -1,4 +1,5 @@
-//! Standard base64 (RFC 4648, with padding), for images sent to a chat-completions endpoint.
+//! Standard base64 (RFC 4648, with padding), for images sent to a chat-completions endpoint and
+//! `data:` URIs read from glTF files.
 
 const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
@@ -23,9 +24,34 @@ pub fn encode(bytes: &[u8]) -> String {
     out
 }
 
+/// Decodes standard base64 (with or without padding).
+pub fn decode(text: &str) -> Result<Vec<u8>, String> {
+    let mut out = Vec::with_capacity(text.len() * 3 / 4);
+    let mut acc = 0u32;
+    let mut bits = 0;
+    for c in text.bytes() {
+        let v = match c {
+            b'A'..=b'Z' => c - b'A',
+            b'a'..=b'z' => c - b'a' + 26,
+            b'0'..=b'9' => c - b'0' + 52,
+            b'+' | b'-' => 62,
+            b'/' | b'_' => 63,
+            b'=' | b'\n' | b'\r' | b' ' => continue,
+            _ => return Err(format!("bad base64 character {:?}", c as char)),
+        };
+        acc = (acc << 6) | u32::from(v);
+        bits += 6;
+        if bits >= 8 {
+            bits -= 8;
+            out.push((acc >> bits) as u8);
+        }
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
-    use super::encode;
+    use super::{decode, encode};
 
     #[test]
     fn rfc_4648_test_vectors() {
@@ -41,5 +67,11 @@ mod tests {
             assert_eq!(encode(plain.as_bytes()), coded);
         }
         assert_eq!(encode(&[0xff, 0xfe, 0x00]), "//4A");
+    }
+
+    #[test]
+    fn decodes_and_refuses_garbage() {
+        assert!(decode("!!!").is_err());
+        assert_eq!(decode("aGVsbG8=").unwrap(), b"hello");
     }
 }

@@ -4,3 +4,4 @@ pub mod base64;
 pub mod fsx;
 pub mod http_body;
 pub mod png;
+pub mod xml;

@@ -8,11 +8,12 @@ use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
 use serde_json::json;
 
+use scenesmith::assets::architecture;
 use scenesmith::assets::{Asset, LinkBuilder, material};
 use scenesmith::geometry::ConvexPiece;
-use scenesmith::layout::{architecture, rectangle_walls};
 use scenesmith::physics::collision::{penetrating_pairs, posed_objects};
 use scenesmith::physics::{BridgeConfig, BridgePool};
+use scenesmith::scene::rectangle_walls;
 use scenesmith::scene::{ObjectKind, Pose, Room, Scene, SceneObject, Support, SurfaceRecord};
 use scenesmith::state::SceneState;
 

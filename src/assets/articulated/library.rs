@@ -24,9 +24,9 @@ use super::reader::{merge_fixed, read_sdf, read_urdf};
 use crate::assets::external::import::Axis;
 use crate::assets::external::{match_score, search_words};
 use crate::assets::{Asset, AssetError, JointKind, content_id, physical};
-use crate::formats::xml;
 use crate::geometry::MassProps;
 use crate::scene::{Pose, SurfaceRecord};
+use crate::util::xml;
 
 /// What can go wrong with the library.
 #[derive(Debug, thiserror::Error)]

@@ -11,9 +11,9 @@ use nalgebra::{Matrix3, Point3, Rotation3, Vector3};
 
 use crate::assets::procedural::shapes;
 use crate::assets::{Asset, Contact, Joint, JointKind, Link, VisualPart};
-use crate::formats::xml::{self, El};
 use crate::geometry::{ConvexPiece, MassProps, TriMesh, mesh};
 use crate::scene::Pose;
+use crate::util::xml::{self, El};
 
 /// A link while reading.
 struct RawLink {

@@ -116,7 +116,7 @@ pub(crate) fn read_mesh_file(path: &Path) -> Result<(Vec<VisualPart>, bool), Ext
         .unwrap_or("")
         .to_ascii_lowercase();
     match ext.as_str() {
-        "gltf" | "glb" => crate::formats::gltf_read::read_file(path)
+        "gltf" | "glb" => crate::assets::gltf_read::read_file(path)
             .map(|p| (p, true))
             .map_err(ExternalError::Mesh),
         "obj" => {
@@ -124,7 +124,7 @@ pub(crate) fn read_mesh_file(path: &Path) -> Result<(Vec<VisualPart>, bool), Ext
                 path: path.to_path_buf(),
                 message: e.to_string(),
             })?;
-            let mut mesh = crate::formats::obj::parse_obj(&text)
+            let mut mesh = crate::geometry::obj::parse_obj(&text)
                 .map_err(|e| ExternalError::Mesh(format!("{}: {e}", path.display())))?;
             if mesh.normals.len() != mesh.positions.len() {
                 crate::geometry::mesh::recompute_normals(&mut mesh);

@@ -188,7 +188,7 @@ impl HttpBackend {
     ) -> Result<Asset, ExternalError> {
         let glb = self.generate(description, support, size, seed)?;
         let parts =
-            crate::formats::gltf_read::parse(&glb, None).map_err(|e| ExternalError::Garbage {
+            crate::assets::gltf_read::parse(&glb, None).map_err(|e| ExternalError::Garbage {
                 url: self.url.clone(),
                 message: e,
             })?;

@@ -352,7 +352,7 @@ pub fn phrase(text: &str) -> Phrase {
 
 /// The nearest family along the WordNet hypernyms of `noun` (or of its last word) that the
 /// library builds.
-fn library_family(noun: &str) -> Option<crate::prompt::ground::Family> {
+fn library_family(noun: &str) -> Option<crate::words::ground::Family> {
     family_where(noun, &|l: &str| !candidate_categories(l).is_empty())
 }
 
@@ -360,7 +360,7 @@ fn library_family(noun: &str) -> Option<crate::prompt::ground::Family> {
 pub fn library_family_for(
     noun: &str,
     support: crate::assets::procedural::SupportClass,
-) -> Option<crate::prompt::ground::Family> {
+) -> Option<crate::words::ground::Family> {
     family_where(noun, &|l: &str| {
         candidate_categories(l)
             .iter()
@@ -368,10 +368,10 @@ pub fn library_family_for(
     })
 }
 
-fn family_where(noun: &str, known: &dyn Fn(&str) -> bool) -> Option<crate::prompt::ground::Family> {
-    crate::prompt::ground::family(noun, known).or_else(|| {
+fn family_where(noun: &str, known: &dyn Fn(&str) -> bool) -> Option<crate::words::ground::Family> {
+    crate::words::ground::family(noun, known).or_else(|| {
         let last = noun.rsplit(' ').next().filter(|l| *l != noun)?;
-        crate::prompt::ground::family(last, known)
+        crate::words::ground::family(last, known)
     })
 }
 
@@ -396,12 +396,12 @@ pub fn object_name(description: &str) -> Option<String> {
         // A noun the library does not know keeps its own name ("samovar").
         return phrase(&main.join(" ")).unknown_noun;
     };
-    let wn = crate::prompt::wordnet::wordnet();
+    let wn = crate::words::wordnet::wordnet();
     let mut from = start;
     while from > 0 {
         let w = main[from - 1].as_str();
-        let kind_word = wn.has_pos(w, crate::prompt::wordnet::Pos::Noun)
-            && !wn.has_pos(w, crate::prompt::wordnet::Pos::Adj)
+        let kind_word = wn.has_pos(w, crate::words::wordnet::Pos::Noun)
+            && !wn.has_pos(w, crate::words::wordnet::Pos::Adj)
             && !attributes::is_attribute_word(w)
             && !STOP.contains(&w)
             && number_word(w).is_none();

@@ -26,7 +26,7 @@ pub(super) fn check_glb(
             return;
         }
     };
-    let parts = match crate::formats::gltf_read::parse(&bytes, None) {
+    let parts = match crate::assets::gltf_read::parse(&bytes, None) {
         Ok(p) => p,
         Err(e) => {
             rows.fail("loads", "scene.glb", e);

@@ -175,7 +175,7 @@ pub fn from_reading(prompt: &str, reading: &Reading) -> HouseBrief {
     brief.head = reading
         .house_type
         .as_deref()
-        .filter(|h| !crate::prompt::lexicon().is_non_object(h))
+        .filter(|h| !crate::words::lexicon().is_non_object(h))
         .map(with_article)
         .unwrap_or_default();
     brief.style = reading.styles.clone();

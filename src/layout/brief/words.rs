@@ -11,7 +11,7 @@ pub(super) struct Tok {
     pub(super) w: String,
 }
 
-/// Words of `text[from..to]` as [`crate::prompt::tokenize`] splits them, with byte offsets.
+/// Words of `text[from..to]` as [`crate::words::tokenize`] splits them, with byte offsets.
 pub(super) fn tokens(text: &str, from: usize, to: usize) -> Vec<Tok> {
     let mut out = Vec::new();
     let mut cur: Option<usize> = None;

@@ -48,7 +48,7 @@ pub struct GenerateArgs {
 }
 
 pub(super) fn type_key(words: &str) -> String {
-    let toks = crate::prompt::tokenize(words);
+    let toks = crate::words::tokenize(words);
     let key = words.trim().to_lowercase().replace([' ', '-'], "_");
     if knowledge::knowledge().get(&key).is_some() {
         return key;

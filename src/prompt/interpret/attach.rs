@@ -5,9 +5,9 @@ use std::ops::Range;
 
 use super::{Clause, Ctx, Interp, Intro, Pending, Ref, is_plural_count, is_room_placement};
 use crate::prompt::chunk::{Chunk, Head, Item};
-use crate::prompt::lexicon::Support;
 use crate::prompt::mentions::{Count, GroupKind, Per};
 use crate::prompt::relations::{Relation, RelationKind, Target, normalize};
+use crate::words::lexicon::Support;
 
 impl Interp<'_> {
     pub(super) fn add_relation(&mut self, m: usize, rel: Relation) {

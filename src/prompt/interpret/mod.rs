@@ -12,11 +12,11 @@ mod attach;
 mod objects;
 
 use super::chunk::{Chunk, Head, Item, Np};
-use super::lexicon::Lexicon;
 use super::mentions::{Count, Group, GroupKind, Mention};
 use super::relations::{Relation, RelationKind, Target, landmark_target};
 use super::rooms::{self, RoomReading, Scope};
-use super::tokens::Token;
+use crate::words::lexicon::Lexicon;
+use crate::words::tokens::Token;
 
 /// A reference to (a member or part of) a mention.
 #[derive(Debug, Clone, PartialEq)]
@@ -420,8 +420,8 @@ impl<'a> Interp<'a> {
                     // "photographs of classic haircuts", "a statue of a horse": the subject
                     // of a picture, for the next phrase only, is a motif, not an object.
                     if let Some(f) = c.last_np.last().or(c.focus.first()).cloned()
-                        && (super::ground::is_depiction(&self.mentions[f.m].noun)
-                            || super::ground::is_depiction(&self.mentions[f.m].category))
+                        && (crate::words::ground::is_depiction(&self.mentions[f.m].noun)
+                            || crate::words::ground::is_depiction(&self.mentions[f.m].category))
                     {
                         self.push_ctx(&mut c, Ctx::StyleOf(vec![f]));
                         c.of_once = true;

@@ -3,9 +3,9 @@
 
 use super::{Clause, Ctx, Interp, Intro, Ref, is_plural_count};
 use crate::prompt::chunk::{Chunk, Head, Np, Pronoun};
-use crate::prompt::lexicon::Support;
 use crate::prompt::mentions::{Count, GroupKind, Mention, Per, phrase_count};
 use crate::prompt::relations::{Relation, RelationKind, Target, normalize};
+use crate::words::lexicon::Support;
 
 impl Interp<'_> {
     pub(super) fn pronoun_np(&mut self, c: &mut Clause, p: Pronoun) {

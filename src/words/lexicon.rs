@@ -4,7 +4,7 @@
 //! styles, density words (`src/data/lexicon/words.json`).
 //!
 //! This module answers "what is this word (or run of words)?"; it does not decide what a
-//! phrase means in context (see `chunk` and `interpret`).
+//! phrase means in context (the prompt reader's `chunk` and `interpret` do).
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::sync::OnceLock;
@@ -661,7 +661,7 @@ pub fn lexicon() -> &'static Lexicon {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::prompt::tokens::lex;
+    use crate::words::tokens::lex;
 
     #[test]
     fn compiled_lexicon_parses() {

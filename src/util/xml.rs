@@ -1,5 +1,6 @@
 //! A tiny element tree rendered through quick-xml, shared by the XML writers (SDFormat, MJCF,
-//! package.xml). Text and attribute values are escaped by quick-xml.
+//! package.xml) and parsed back by the readers (SDFormat of resumed runs, the SDF/URDF asset
+//! library). Text and attribute values are escaped by quick-xml.
 
 use quick_xml::Writer;
 use quick_xml::events::{BytesDecl, BytesText, Event};

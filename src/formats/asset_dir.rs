@@ -9,8 +9,8 @@
 
 use std::path::{Path, PathBuf};
 
-use super::Asset;
-use crate::formats::sdf::asset_files;
+use super::sdf::asset_files;
+use crate::assets::Asset;
 use crate::util::fsx::io_err;
 
 /// Name of the summary file in an asset directory.

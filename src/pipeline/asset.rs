@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use super::files::{AssetWriteError, write_asset_dir};
-use super::router::{self, RouteError, RouteRequest, Routed, RouterContext, Stage};
-use super::{Asset, procedural};
+use crate::assets::router::{self, RouteError, RouteRequest, Routed, RouterContext, Stage};
+use crate::assets::{Asset, procedural};
+use crate::formats::asset_dir::{AssetWriteError, write_asset_dir};
 
 /// Options of one `scenesmith asset` run.
 #[derive(Debug, Clone)]
@@ -153,7 +153,7 @@ pub fn make_asset(
 
 /// Whether `dir` holds an asset directory written by [`make_asset`].
 pub fn is_asset_dir(dir: &Path) -> bool {
-    dir.join(super::files::ASSET_JSON).is_file()
+    dir.join(crate::formats::asset_dir::ASSET_JSON).is_file()
 }
 
 #[cfg(test)]

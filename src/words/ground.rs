@@ -6,8 +6,8 @@
 //!
 //! The rules are data (`src/data/lexicon/grounding.json`: anchor synsets, thresholds); the
 //! dictionary is [`super::wordnet`]. This module answers questions about words; it does not
-//! read phrases (see `phrase`) and does not know the asset library: callers say which nouns
-//! count as a family through a predicate.
+//! read phrases (the prompt reader's `phrase` does) and does not know the asset library:
+//! callers say which nouns count as a family through a predicate.
 
 use std::collections::{HashSet, VecDeque};
 use std::sync::OnceLock;
