@@ -469,16 +469,8 @@ pub(crate) fn encode_args<O: Op>(args: &O::Args) -> Result<Value, BridgeError> {
 /// `O`'s reply from the JSON the bridge sent: a missing or mistyped field is an error naming
 /// the operation.
 pub(crate) fn decode_reply<O: Op>(result: Value) -> Result<O::Reply, BridgeError> {
-    decode(O::NAME, result)
-}
-
-/// The reply to operation `op` as `R`; see [`decode_reply`].
-pub(crate) fn decode<R: serde::de::DeserializeOwned>(
-    op: &str,
-    result: Value,
-) -> Result<R, BridgeError> {
     serde_json::from_value(result).map_err(|e| BridgeError::BadReply {
-        op: op.to_string(),
+        op: O::NAME.to_string(),
         cause: e.to_string(),
     })
 }

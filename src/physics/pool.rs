@@ -34,15 +34,6 @@ impl Job {
             args: encode_args::<O>(args)?,
         })
     }
-
-    /// A job for `op` with JSON arguments, for requests that are not an [`Op`] (protocol
-    /// tests).
-    pub fn raw(op: &str, args: Value) -> Job {
-        Job {
-            op: op.to_string(),
-            args,
-        }
-    }
 }
 
 /// N bridge workers (default: one per core).
