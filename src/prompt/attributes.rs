@@ -283,6 +283,24 @@ pub(crate) fn modifier_at(
     {
         return Some(single(t, ModKind::Adjective(w.to_string())));
     }
+    // "a mounted vise", "two stacked crates": a participle the verb table lists, right after
+    // a determiner or a number and before a noun, modifies the noun.
+    let wn = crate::words::wordnet::wordnet();
+    if w.ends_with("ed")
+        && lex.verb(w).is_some()
+        && at > 0
+        && tokens
+            .get(at - 1)
+            .is_some_and(|p| lex.determiner(&p.text).is_some() || lex.number(p).is_some())
+        && tokens.get(at + 1).is_some_and(|u| {
+            u.is_word()
+                && !lex.is_function_word(&u.text)
+                && (lex.noun_at(tokens, at + 1).is_some()
+                    || wn.has_pos(&u.text, crate::words::wordnet::Pos::Noun))
+        })
+    {
+        return Some(single(t, ModKind::Adjective(w.to_string())));
+    }
     if lex.is_function_word(w) || lex.landmark(w).is_some() {
         return None;
     }
@@ -338,7 +356,6 @@ pub(crate) fn modifier_at(
         .is_some_and(|u| u.is_word() && !lex.is_function_word(&u.text));
     // Participles ("scattered", "folded", "hanging"), unless the word is a noun WordNet
     // knows as written ("flowerbed", "seaweed", "building").
-    let wn = crate::words::wordnet::wordnet();
     // A gerund that is a noun too modifies a noun after it: "six reading tables".
     let noun_lemma = wn.is_lemma(w, crate::words::wordnet::Pos::Noun)
         && !tokens.get(at + 1).is_some_and(|u| {

@@ -452,10 +452,25 @@ impl<'a> Phrase<'a> {
             {
                 break;
             }
+            // "a folding ironing board": a modifier that begins a noun WordNet knows whole
+            // ("ironing board") is part of the head.
+            if self.wordnet_compound_at(j) {
+                break;
+            }
             match modifier_at(lex, kb, tokens, j, self.sentence_start) {
                 Some(m) if j + m.len <= end => {
                     np.attrs.add(&m);
                     j += m.len;
+                }
+                _ if self.adjective_before_modifier(j) => {
+                    let w = tokens[j].text.clone();
+                    np.attrs.adjectives.push(w);
+                    np.attrs.modifiers.push(tokens[j].raw.clone());
+                    j += 1;
+                }
+                _ if self.noun_modifier_at(j) => {
+                    np.attrs.modifiers.push(tokens[j].raw.clone());
+                    j += 1;
                 }
                 _ => break,
             }
@@ -472,6 +487,61 @@ impl<'a> Phrase<'a> {
             j += rn;
         }
         j
+    }
+
+    /// "A plush grey sofa": a one-word noun WordNet also reads as an adjective, followed by a
+    /// colour, material or size word, is an adjective.
+    fn adjective_before_modifier(&self, j: usize) -> bool {
+        let (lex, tokens) = (self.lex, self.tokens);
+        let Some(w) = self.at(j) else { return false };
+        let next_describes = self.at(j + 1).is_some_and(|x| {
+            lex.color_at(tokens, j + 1).is_some()
+                || lex.material(x).is_some()
+                || lex.size_adjective(x).is_some()
+        });
+        lex.noun_at(tokens, j).is_some_and(|(n, ..)| n == 1)
+            && !lex.is_plural(w)
+            && crate::words::wordnet::wordnet().has_pos(w, crate::words::wordnet::Pos::Adj)
+            && next_describes
+            && j + 2 < self.end
+    }
+
+    /// "Meditation cushions", "art books": a noun in its base form that the lexicon does not
+    /// know, right before a lexicon noun, modifies it.
+    fn noun_modifier_at(&self, j: usize) -> bool {
+        let (lex, tokens) = (self.lex, self.tokens);
+        let Some(w) = self.at(j) else { return false };
+        j + 1 < self.end
+            && lex.noun_at(tokens, j).is_none()
+            && self.kb.room_type_at(tokens, j).is_none()
+            && !lex.is_function_word(w)
+            && lex.landmark(w).is_none()
+            && crate::words::wordnet::wordnet().is_lemma(w, crate::words::wordnet::Pos::Noun)
+            && lex
+                .noun_at(tokens, j + 1)
+                .is_some_and(|(n, ..)| j + 1 + n <= self.end)
+    }
+
+    /// Whether the words at `j` begin a compound noun WordNet knows as written ("ironing
+    /// board", "spinning wheel") whose last word the lexicon does not know as a noun.
+    fn wordnet_compound_at(&self, j: usize) -> bool {
+        let (lex, tokens) = (self.lex, self.tokens);
+        if lex.noun_at(tokens, j).is_some() || lex.style_at(tokens, j).is_some() {
+            return false;
+        }
+        (2..=3).any(|n| {
+            let last = j + n - 1;
+            let words: Option<Vec<&str>> = (j..=last).map(|k| self.at(k)).collect();
+            words.is_some_and(|ws| {
+                let mut ws: Vec<String> = ws.iter().map(|w| w.to_string()).collect();
+                if let Some(l) = ws.last_mut() {
+                    *l = lex.singular(l);
+                }
+                let c = ws.join(" ");
+                lex.noun_at(tokens, last).is_none()
+                    && ground::noun_lemma(&c).is_some_and(|l| l == c)
+            })
+        })
     }
 
     /// The head: a room, a lexicon noun, a landmark, part or feature word, or an open-vocabulary
@@ -533,7 +603,22 @@ impl<'a> Phrase<'a> {
             && word(self.tokens, i - 1).is_some_and(is_linking_verb)
             && !lex.is_plural(w)
             && crate::words::wordnet::wordnet().has_pos(w, crate::words::wordnet::Pos::Adj);
-        noun_len == 1 && (lex.is_ambiguous_bare(w) || predicate) && !evidence && !self.in_list
+        noun_len == 1
+            && (lex.is_ambiguous_bare(w) || predicate || self.coordinated_adjective(w, j))
+            && !evidence
+            && !self.in_list
+    }
+
+    /// "Compact but efficient, this laundry room ...": a bare word WordNet also reads as an
+    /// adjective, joined by a conjunction to a word that is only an adjective, is one.
+    fn coordinated_adjective(&self, w: &str, j: usize) -> bool {
+        let wn = crate::words::wordnet::wordnet();
+        let adjective = |x: &str| wn.has_pos(x, crate::words::wordnet::Pos::Adj);
+        !self.lex.is_plural(w)
+            && adjective(w)
+            && word(self.tokens, j + 1).is_some_and(|c| self.lex.is_conjunction(c))
+            && word(self.tokens, j + 2)
+                .is_some_and(|x| adjective(x) && ground::only_other_pos(x).is_some())
     }
 
     /// A room head when the words name a room at least as long as the lexicon noun there.
@@ -694,6 +779,9 @@ impl<'a> Phrase<'a> {
             || np.number == Some(1);
         let (len, head) = compound_tail(lex, self.kb, tokens, start + n, self.end, singular_det)?;
         let last = start + n + len - 1;
+        if self.verb_of_coordinated_subject(last) {
+            return None;
+        }
         // "an antique barometer": a one-word noun that is also an adjective modifies.
         let adjective_first = n == 1
             && crate::words::wordnet::wordnet()
@@ -710,6 +798,24 @@ impl<'a> Phrase<'a> {
         }
         np.set_grounded(written.join(" "), &head);
         Some(last + 1)
+    }
+
+    /// "A broom and a mop stand in the corner": the second of two coordinated subjects, in a
+    /// sentence with no verb before it, ends in a verb in its base form (the plural verb of
+    /// both), not in a compound noun ("mop stand").
+    fn verb_of_coordinated_subject(&self, k: usize) -> bool {
+        let (lex, tokens) = (self.lex, self.tokens);
+        let Some(w) = word(tokens, k) else {
+            return false;
+        };
+        let base_verb = lex.verb(w).is_some() && !w.ends_with('s') && !w.ends_with("ed");
+        let after_and = self.start > self.sentence_start
+            && word(tokens, self.start - 1).is_some_and(|c| lex.is_conjunction(c));
+        let no_verb_before = (self.sentence_start..self.start)
+            .all(|i| word(tokens, i).is_none_or(|x| lex.verb(x).is_none()));
+        let then_place = lex.preposition_at(tokens, k + 1).is_some()
+            || word(tokens, k + 1).is_some_and(|x| lex.landmark(x).is_some());
+        base_verb && after_and && no_verb_before && then_place
     }
 
     /// The object head of lexicon entry `entry` written as `noun`, and a group suffix after it
@@ -813,7 +919,7 @@ impl<'a> Phrase<'a> {
             if j > before.mods_from
                 && let Some(prev) = word(tokens, j - 1)
                 && let Some(pair) = wordnet_pair(lex, prev, w)
-                && let Ok(head) = ground_words(lex, &[prev, w], true)
+                && let Ok(head) = ground_words(lex, &[prev, w], Evidence::Strong)
             {
                 np.plural = head.singular != w;
                 np.set_grounded(pair, &head);
@@ -852,7 +958,13 @@ impl<'a> Phrase<'a> {
                 np.det.as_deref(),
                 Some("indefinite" | "each" | "another" | "several")
             );
-        match open_head(lex, self.kb, tokens, j, self.end, np, strong, self.in_list) {
+        let evidence = if strong {
+            Evidence::Strong
+        } else {
+            Evidence::Weak
+        };
+        let phrase = (self.start, self.end);
+        match open_head(lex, self.kb, tokens, j, phrase, np, evidence, self.in_list) {
             Open::Lexicon { before: at, n2, .. } if names_building(lex, tokens, at, n2) => {
                 np.head = Head::NonObject;
                 Some(at + n2)
@@ -991,9 +1103,22 @@ impl Grounded {
     }
 }
 
+/// How a phrase presents its noun as a thing.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Evidence {
+    /// Nothing presents it.
+    Weak,
+    /// The phrase counts it, lists it or introduces it with "a".
+    Strong,
+    /// As `Strong`, and the sentence places it: a spatial preposition or a verb of placing
+    /// or holding next to it ("a ribbon on the table", "shelves hold catalogues").
+    Placed,
+}
+
 /// Grounds the noun made of `words` (the last is the head): the longest compound ending at
-/// the head that WordNet knows decides; `strong` says the phrase counts or lists it.
-fn ground_words(lex: &Lexicon, words: &[&str], strong: bool) -> Result<Grounded, String> {
+/// the head that WordNet knows decides, with how the phrase presents it.
+fn ground_words(lex: &Lexicon, words: &[&str], evidence: Evidence) -> Result<Grounded, String> {
+    let strong = evidence >= Evidence::Strong;
     let Some(last) = words.last() else {
         return Err("no noun".to_string());
     };
@@ -1027,7 +1152,8 @@ fn ground_words(lex: &Lexicon, words: &[&str], strong: bool) -> Result<Grounded,
         Verdict::NeedsEvidence => {
             return Err("rarely a thing, and the phrase neither counts nor lists it".to_string());
         }
-        Verdict::NotObject(why) => return Err(why),
+        Verdict::Rarely(_) if evidence == Evidence::Placed => {}
+        Verdict::NotObject(why) | Verdict::Rarely(why) => return Err(why),
     }
     Ok(grounded(lex, &compound, last))
 }
@@ -1186,19 +1312,21 @@ fn compound_tail(
         let known = lex
             .entry_index(&tokens[at - 1].text)
             .or_else(|| lex.entry_index(&lex.singular(&tokens[at - 1].text)));
-        return ground_words(lex, &whole, true).ok().and_then(|mut g| {
-            if g.family.is_none() {
-                let entry = known?;
-                g.family = lex.objects.get(entry).map(|e| e.noun.clone());
-                g.family_entry = Some(entry);
-                g.via = vec![g.lemma.clone(), tokens[at - 1].text.clone()];
-            }
-            Some((len, g))
-        });
+        return ground_words(lex, &whole, Evidence::Strong)
+            .ok()
+            .and_then(|mut g| {
+                if g.family.is_none() {
+                    let entry = known?;
+                    g.family = lex.objects.get(entry).map(|e| e.noun.clone());
+                    g.family_entry = Some(entry);
+                    g.via = vec![g.lemma.clone(), tokens[at - 1].text.clone()];
+                }
+                Some((len, g))
+            });
     }
     // "a bench vice", "a bench grinder": after a known noun, a noun with any physical sense
     // names that thing.
-    ground_words(lex, &words, true)
+    ground_words(lex, &words, Evidence::Strong)
         .ok()
         .or_else(|| {
             let last = *words.last()?;
@@ -1250,9 +1378,9 @@ fn open_head(
     kb: &Knowledge,
     tokens: &[Token],
     j: usize,
-    end: usize,
+    (phrase_start, end): (usize, usize),
     np: &Np,
-    strong: bool,
+    evidence: Evidence,
     in_list: bool,
 ) -> Open {
     let at = |k: usize| if k < end { word(tokens, k) } else { None };
@@ -1377,7 +1505,21 @@ fn open_head(
     if let Some(reason) = bare_reason {
         return dropped(reason.to_string());
     }
-    match ground_words(lex, name, strong) {
+    // A rarely physical noun is a thing where the sentence places it and the phrase names
+    // several of them or a kind of it, not one it already knows ("shelves hold catalogues",
+    // "a microfilm reader in the corner"; not "under a sloping roof", "in the hills").
+    let plural_or_kind = name.len() >= 2 || lex.is_plural(last);
+    let known = matches!(np.det.as_deref(), Some("definite" | "possessive"));
+    let evidence = if evidence == Evidence::Strong
+        && plural_or_kind
+        && !known
+        && placed(lex, tokens, phrase_start, k)
+    {
+        Evidence::Placed
+    } else {
+        evidence
+    };
+    match ground_words(lex, name, evidence) {
         Ok(head) => {
             let last = words.len() - 1;
             let mut noun: Vec<String> = name.iter().map(|w| w.to_string()).collect();
@@ -1394,6 +1536,28 @@ fn open_head(
         }
         Err(reason) => dropped(reason),
     }
+}
+
+/// Whether the sentence places the phrase of tokens `start..next`: a spatial preposition
+/// or a verb of placing, holding or showing right before it ("shelves hold catalogues", "on a
+/// board"), or one right after it ("a ribbon on the table", "a berth runs along the hull").
+fn placed(lex: &Lexicon, tokens: &[Token], start: usize, next: usize) -> bool {
+    let spatial_at = |k: usize| {
+        lex.preposition_at(tokens, k)
+            .filter(|(_, class)| *class != "from")
+            .map(|(n, _)| n)
+    };
+    let placing_verb = |k: usize| {
+        word(tokens, k)
+            .and_then(|w| lex.verb(w))
+            .is_some_and(|class| !matches!(class, "inspired" | "styled" | "made" | "other"))
+    };
+    // "next to a ...": a preposition of several words that ends right before the phrase.
+    let preposition_before =
+        (start.saturating_sub(3)..start).any(|k| spatial_at(k).is_some_and(|n| k + n == start));
+    let before = preposition_before || start.checked_sub(1).is_some_and(placing_verb);
+    let of_next = word(tokens, next) == Some("of");
+    !of_next && (before || spatial_at(next).is_some() || placing_verb(next))
 }
 
 /// A room's name as the prompt gives it: the room words with the kind words before them

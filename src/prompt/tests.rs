@@ -606,3 +606,52 @@ fn a_building_holds_the_rooms_it_lists() {
         "the fire engines are the engine bay's"
     );
 }
+
+#[test]
+fn participles_and_gerunds_before_a_noun_modify_it() {
+    // A participle of the verb table after "a" or a number modifies the noun after it.
+    let r = read("A mounted clock and two stacked crates sit by the door.");
+    assert_eq!(find(&r, "crate").count, Count::Exactly(2));
+    assert!(r.mentions.iter().any(|m| m.noun.ends_with("clock")));
+    // A gerund that begins a compound WordNet knows whole is part of the head.
+    let r = read("A long fishing rod leans in the corner.");
+    assert!(
+        r.mentions.iter().any(|m| m.category == "fishing rod"),
+        "{:?}",
+        r.mentions.iter().map(|m| &m.noun).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn nouns_and_adjectives_before_a_lexicon_noun_stay_in_its_name() {
+    let r = read("Conference chairs surround the table.");
+    assert_eq!(find(&r, "chair").noun, "conference chair");
+    // "plush" is a thing in the lexicon, and an adjective before a colour.
+    let r = read("A plush grey sofa faces the window.");
+    assert_eq!(r.mentions.len(), 1, "{:?}", r.mentions);
+    assert_eq!(find(&r, "sofa").noun, "plush grey sofa");
+    // "Compact but efficient, ...": an adjective joined to an adjective.
+    let r = read("Compact but efficient, this office holds a desk.");
+    assert_eq!(r.mentions.len(), 1, "{:?}", r.mentions);
+}
+
+#[test]
+fn a_base_verb_after_two_subjects_is_the_verb() {
+    let r = read("A desk and a chair stand by the window.");
+    assert_eq!(find(&r, "chair").noun, "chair");
+    // Without the coordinated subject, the same words are one noun.
+    let r = read("There is a cake stand by the window.");
+    assert!(r.mentions.iter().any(|m| m.noun == "cake stand"));
+}
+
+#[test]
+fn a_rarely_physical_noun_is_a_thing_where_the_sentence_places_it() {
+    // "catalogue" is mostly a list in WordNet; shelves holding them place them.
+    let r = read("Tall shelves hold catalogues.");
+    assert!(r.mentions.iter().any(|m| m.noun == "catalogue"));
+    // A known one ("the hills") or a lone singular is not placed.
+    let r = read("A cottage in the hills has a sofa.");
+    assert!(r.mentions.iter().all(|m| m.noun != "hill"));
+    let r = read("A desk sits beneath a sloping roof.");
+    assert!(r.mentions.iter().all(|m| m.noun != "roof"));
+}

@@ -286,6 +286,9 @@ pub enum Verdict {
     NeedsEvidence,
     /// Not a placeable thing; the reason names what it is ("feeling", "state").
     NotObject(String),
+    /// Rarely a placeable thing ("board": mostly a committee): one only where the sentence
+    /// places it; the reason says what it mostly is.
+    Rarely(String),
 }
 
 /// Whether the noun `words` names a placeable thing.
@@ -309,7 +312,7 @@ pub fn verdict(words: &str) -> Verdict {
             "{} word, no physical thing",
             with_article(info.lexname.trim_start_matches("noun."))
         )),
-        Some(info) => Verdict::NotObject(format!(
+        Some(info) => Verdict::Rarely(format!(
             "mostly {} word ({:.0} % of its uses name a thing)",
             with_article(info.lexname.trim_start_matches("noun.")),
             100.0 * info.share
@@ -440,7 +443,7 @@ mod tests {
             "touch",
         ] {
             assert!(
-                matches!(verdict(w), Verdict::NotObject(_)),
+                matches!(verdict(w), Verdict::NotObject(_) | Verdict::Rarely(_)),
                 "{w}: {:?} {:?}",
                 verdict(w),
                 noun_info(w)
