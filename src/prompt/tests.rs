@@ -655,3 +655,14 @@ fn a_rarely_physical_noun_is_a_thing_where_the_sentence_places_it() {
     let r = read("A desk sits beneath a sloping roof.");
     assert!(r.mentions.iter().all(|m| m.noun != "roof"));
 }
+
+#[test]
+fn each_with_covers_a_list_to_its_end() {
+    let r = read(
+        "Six desks stand in two rows, each with a monitor, a filing cabinet and a wastebasket.",
+    );
+    for cat in ["monitor", "filing cabinet", "trash can"] {
+        let i = index(&r, cat);
+        assert_eq!(r.total(i), Count::Exactly(6), "{cat}: {:?}", r.mentions[i]);
+    }
+}

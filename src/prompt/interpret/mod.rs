@@ -110,6 +110,9 @@ struct Clause {
     bare_number: Option<u32>,
     /// ", each topped with": the "with" keeps the per-parent context.
     each_with: bool,
+    /// The phrase at hand is an item of a list that goes on to its last item ("A, B and C"
+    /// up to the end of the sentence).
+    list_goes_on: bool,
 }
 
 impl Clause {
@@ -144,6 +147,7 @@ impl Clause {
             each_subject: false,
             bare_number: None,
             each_with: false,
+            list_goes_on: false,
         }
     }
 }
@@ -585,7 +589,10 @@ impl<'a> Interp<'a> {
                     self.add_styles(&targets, np);
                 }
             }
-            Head::Object { .. } => self.object_np(c, np, chunk, next_is_verb),
+            Head::Object { .. } => {
+                c.list_goes_on = list_goes_on(chunks, k);
+                self.object_np(c, np, chunk, next_is_verb)
+            }
         }
     }
 
@@ -701,6 +708,23 @@ impl<'a> Interp<'a> {
 
 /// Whether the phrase at `k` is the subject of a verb after a short insertion: "The boot room
 /// beside it holds ...", "The bakery itself has ...", "the two bedrooms each have ...".
+/// Whether the noun phrase chunk `k` is an item of a list that runs on to its last item and
+/// the end of the sentence: only phrases, commas and "and" follow, the last after an "and"
+/// ("two monitors, a docking station and a task chair.").
+fn list_goes_on(chunks: &[Chunk], k: usize) -> bool {
+    let mut and_then_np = false;
+    let mut after_and = false;
+    for c in &chunks[k + 1..] {
+        match c.item {
+            Item::Np(_) => and_then_np |= after_and,
+            Item::And => after_and = true,
+            Item::Comma => {}
+            _ => return false,
+        }
+    }
+    and_then_np
+}
+
 fn subject_verb_after(chunks: &[Chunk], k: usize) -> bool {
     let item = |j: usize| chunks.get(j).map(|x| &x.item);
     let mut j = k + 1;

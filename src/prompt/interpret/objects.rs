@@ -221,19 +221,21 @@ impl Interp<'_> {
         // A separator ends a "with" list unless the next phrase is bare ("a monitor,
         // keyboard, and chair") or was joined by "and" (no comma).
         if c.after_sep && c.sep_was_comma && np.has_det() && matches!(c.ctx, Ctx::Each(_)) {
-            // ", each with two chairs, a counter with ...": the counter is not per table.
-            let keeps = match &np.head {
-                Head::Object {
-                    entry, canonical, ..
-                } => {
-                    entry
-                        .and_then(|e| self.lex.objects.get(e))
-                        .is_none_or(|e| e.support == Support::Surface)
-                        || canonical.ends_with("chair")
-                        || canonical.ends_with("stool")
-                }
-                _ => true,
-            };
+            // ", each with two chairs, a counter with ...": the counter is not per table;
+            // ", each with two monitors, a docking station and a chair.": a list to its end is.
+            let keeps = c.list_goes_on
+                || match &np.head {
+                    Head::Object {
+                        entry, canonical, ..
+                    } => {
+                        entry
+                            .and_then(|e| self.lex.objects.get(e))
+                            .is_none_or(|e| e.support == Support::Surface)
+                            || canonical.ends_with("chair")
+                            || canonical.ends_with("stool")
+                    }
+                    _ => true,
+                };
             if !keeps {
                 c.ctx = Ctx::Room;
                 c.stack.clear();
