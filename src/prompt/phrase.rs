@@ -1015,7 +1015,13 @@ impl<'a> Phrase<'a> {
             } => {
                 np.attrs.modifiers.extend(adjectives);
                 np.plural = plural;
-                np.set_grounded(noun, &head);
+                np.set_grounded(noun.clone(), &head);
+                // The name as written keeps the words before it ("a deep fryer", "an
+                // analytical balance"); the category is the noun alone.
+                let start = next.saturating_sub(noun.split(' ').count());
+                if let Head::Object { noun: written, .. } = &mut np.head {
+                    *written = name_of(lex, tokens, before.mods_from, start, &noun);
+                }
                 Some(next)
             }
             Open::Dropped { next, report } => {

@@ -666,3 +666,11 @@ fn each_with_covers_a_list_to_its_end() {
         assert_eq!(r.total(i), Count::Exactly(6), "{cat}: {:?}", r.mentions[i]);
     }
 }
+
+#[test]
+fn open_vocabulary_names_keep_their_modifiers() {
+    let r = read("A deep fryer and a wide mixing console stand by the wall.");
+    let fryer = find(&r, "fryer");
+    assert_eq!(fryer.noun, "deep fryer");
+    assert_eq!(find(&r, "console").noun, "wide mixing console");
+}
