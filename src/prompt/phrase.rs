@@ -1575,11 +1575,16 @@ fn room_name(lex: &Lexicon, tokens: &[Token], from: usize, at: usize, words: Str
     let mut k = at;
     while k > from {
         let Some(w) = word(tokens, k - 1) else { break };
-        let noun = wn.has_pos(w, crate::words::wordnet::Pos::Noun)
-            && !wn.has_pos(w, crate::words::wordnet::Pos::Adj)
+        // Kind words stay ("common kitchen", "staff toilet"); size, colour, material, style
+        // and density words describe the room and go to its attributes.
+        let noun = (wn.has_pos(w, crate::words::wordnet::Pos::Noun)
+            || wn.has_pos(w, crate::words::wordnet::Pos::Adj))
             && lex.material(w).is_none()
             && lex.color_at(tokens, k - 1).is_none()
             && lex.size_adjective(w).is_none()
+            && lex.density(w).is_none()
+            && lex.density_room_only(w).is_none()
+            && !lex.is_adjective(w)
             && lex.style_at(tokens, k - 1).is_none();
         let gerund = w.ends_with("ing")
             && !wn

@@ -823,27 +823,35 @@ fn add_rooms(lex: &Lexicon, nps: &[&Np], st: &mut Structure) -> bool {
         if known {
             continue;
         }
-        if st.rooms.len() == 1 && st.rooms[0].room_type == "room" {
-            // A generic first room is the room this sentence describes.
-            let scale = st.rooms[0].size_scale;
-            st.rooms[0] = RoomReading::new(key, words, words.clone());
-            st.rooms[0].size_scale = scale * size_of(lex, np);
-            continue;
-        }
         let n = capped(np.number.unwrap_or(1).max(1), words, &mut st.notes);
-        for k in 0..n {
+        let name = |k: u32| {
+            if n > 1 {
+                format!("{words} {}", k + 1)
+            } else {
+                words.clone()
+            }
+        };
+        let mut first = 0;
+        if st.rooms.len() == 1 && st.rooms[0].room_type == "room" {
+            // A generic first room is the (first) room this sentence describes; "three
+            // treatment rooms" still gives three.
+            let scale = st.rooms[0].size_scale;
+            let generic =
+                std::mem::replace(&mut st.rooms[0], RoomReading::new(key, words, name(0)));
+            // The building the prompt began with is no room of its own.
+            st.aliases.push(generic.words);
+            st.rooms[0].ordinal = (n > 1).then_some(1);
+            st.rooms[0].size_scale = scale * size_of(lex, np);
+            first = 1;
+        }
+        for k in first..n {
             if st.rooms.len() >= MAX_ROOMS {
                 st.notes.push(format!(
                     "{words}: not built, a house has at most {MAX_ROOMS} rooms"
                 ));
                 break;
             }
-            let name = if n > 1 {
-                format!("{words} {}", k + 1)
-            } else {
-                words.clone()
-            };
-            let mut r = RoomReading::new(key, words, name);
+            let mut r = RoomReading::new(key, words, name(k));
             r.ordinal = (n > 1).then_some(k + 1);
             r.size_scale = size_of(lex, np);
             st.rooms.push(r);

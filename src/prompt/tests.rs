@@ -547,7 +547,7 @@ fn only_things_in_the_room_become_objects() {
     assert_eq!(n, vec!["desk".to_string()]);
     // Buildings and ships hold rooms; they are not placed in one.
     let r = read("This private observatory has a telescope and a desk.");
-    assert_eq!(r.rooms[0].words, "observatory");
+    assert!(r.rooms[0].words.ends_with("observatory"), "{:?}", r.rooms);
     assert!(r.mentions.iter().all(|m| m.noun != "observatory"));
     let n = nouns("Moored on a canal, this narrowboat home is compact. It has a bed.");
     assert_eq!(
@@ -673,4 +673,24 @@ fn open_vocabulary_names_keep_their_modifiers() {
     let fryer = find(&r, "fryer");
     assert_eq!(fryer.noun, "deep fryer");
     assert_eq!(find(&r, "console").noun, "wide mixing console");
+}
+
+#[test]
+fn a_counted_room_after_a_building_keeps_its_count_and_kind_words() {
+    let r = read("This little day spa is calm. Beyond the hall lie four treatment rooms.");
+    let n = r
+        .rooms
+        .iter()
+        .filter(|x| x.words == "treatment room")
+        .count();
+    assert_eq!(n, 4, "{:?}", r.rooms);
+    assert!(
+        r.rooms.iter().all(|x| !x.words.contains("spa")),
+        "{:?}",
+        r.rooms
+    );
+    let r = read("The hostel has a common kitchen, a staff toilet and two dormitories.");
+    let words: Vec<&str> = r.rooms.iter().map(|x| x.words.as_str()).collect();
+    assert!(words.contains(&"common kitchen"), "{words:?}");
+    assert!(words.contains(&"staff toilet"), "{words:?}");
 }
