@@ -576,6 +576,9 @@ impl<'a> Phrase<'a> {
         if let Some(next) = self.landmark_part_or_setting_head(np, before, w) {
             return Some(next);
         }
+        if let Some(next) = self.space_room_head(np, before, w) {
+            return Some(next);
+        }
         if let Some(next) = self.feature_or_non_object_head(np, before, w) {
             return Some(next);
         }
@@ -902,6 +905,26 @@ impl<'a> Phrase<'a> {
             return Some(j + 1);
         }
         None
+    }
+
+    /// "a hot-desking area", "a play zone": an area or zone word after words that say what
+    /// it is for names a space, typed by a thing those words name (else a generic room). A
+    /// house's list makes it a room of its own; a room's "with" keeps it a zone of the room.
+    fn space_room_head(&self, np: &mut Np, before: &BeforeHead, w: &str) -> Option<usize> {
+        let (lex, tokens, j) = (self.lex, self.tokens, before.j);
+        let space = matches!(lex.singular(w).as_str(), "area" | "zone");
+        if !space || j == before.mods_from || self.kb.room_type_at(tokens, j).is_some() {
+            return None;
+        }
+        let kind = word(tokens, j - 1)?;
+        let key = type_for_object(lex, &lex.singular(kind));
+        let words = room_name(lex, tokens, before.mods_from, j, lex.singular(w));
+        if words == lex.singular(w) {
+            return None;
+        }
+        np.plural = lex.is_plural(w);
+        np.head = Head::Room { key, words };
+        Some(j + 1)
     }
 
     /// A feature word ("accents") or words that are never objects ("area", "theme") at the
@@ -1590,7 +1613,9 @@ fn room_name(lex: &Lexicon, tokens: &[Token], from: usize, at: usize, words: Str
             && !wn
                 .base_forms(w, crate::words::wordnet::Pos::Verb)
                 .is_empty();
-        if !(noun || gerund) {
+        // "hot-desking area", "open-plan kitchen".
+        let hyphenated = w.contains('-') && lex.style_at(tokens, k - 1).is_none();
+        if !(noun || gerund || hyphenated) {
             break;
         }
         name = format!("{w} {name}");
@@ -1672,7 +1697,23 @@ fn room_compound(
         {
             return None;
         }
-        if let Some((rn, key)) = kb.room_type_at(tokens, j + m)
+        // A room word of the registry, or one WordNet knows as a room ("phone booths").
+        let room_after = kb
+            .room_type_at(tokens, j + m)
+            .map(|(rn, key)| (rn, key.to_string()))
+            .or_else(|| {
+                // Not a thing of the lexicon that WordNet also reads as a room ("cupboard"),
+                // nor ending in a verb ("the engine bay houses ...").
+                let (rn, key, _) = wordnet_room(lex, tokens, j + m, end)?;
+                let verb = word(tokens, j + m + rn - 1).is_some_and(|x| {
+                    x.ends_with('s')
+                        && !wn
+                            .base_forms(x, crate::words::wordnet::Pos::Verb)
+                            .is_empty()
+                });
+                (lex.noun_at(tokens, j + m).is_none() && !verb).then_some((rn, key))
+            });
+        if let Some((rn, key)) = room_after
             && j + m + rn <= end
         {
             let mut written: Vec<String> = tokens[j..j + m + rn]
@@ -1685,7 +1726,7 @@ fn room_compound(
             let key = if key == "room" {
                 type_for_object(lex, &lex.singular(&tokens[j + m - 1].text))
             } else {
-                key.to_string()
+                key
             };
             return Some((m + rn, key, written.join(" ")));
         }

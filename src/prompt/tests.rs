@@ -694,3 +694,18 @@ fn a_counted_room_after_a_building_keeps_its_count_and_kind_words() {
     assert!(words.contains(&"common kitchen"), "{words:?}");
     assert!(words.contains(&"staff toilet"), "{words:?}");
 }
+
+#[test]
+fn booths_and_areas_in_a_house_list_are_rooms() {
+    let r = read("A library with a quiet study area, three phone booths and a reading room.");
+    let words: Vec<&str> = r.rooms.iter().map(|x| x.words.as_str()).collect();
+    assert_eq!(
+        words.iter().filter(|w| **w == "phone booth").count(),
+        3,
+        "{words:?}"
+    );
+    assert!(words.iter().any(|w| w.ends_with("study area")), "{words:?}");
+    // In a room's own "with", an area stays a zone of that room.
+    let r = read("A living room with a sofa and a reading area with an armchair.");
+    assert_eq!(r.rooms.len(), 1, "{:?}", r.rooms);
+}
