@@ -283,10 +283,10 @@ pub(crate) fn modifier_at(
     {
         return Some(single(t, ModKind::Adjective(w.to_string())));
     }
-    // "a mounted vise", "two stacked crates": a participle the verb table lists, right after
-    // a determiner or a number and before a noun, modifies the noun.
+    // "a mounted vise", "two stacked crates", "the sleeping loft": a participle the verb
+    // table lists, right after a determiner or a number and before a noun, modifies it.
     let wn = crate::words::wordnet::wordnet();
-    if w.ends_with("ed")
+    if (w.ends_with("ed") || w.ends_with("ing"))
         && lex.verb(w).is_some()
         && at > 0
         && tokens

@@ -130,10 +130,11 @@ pub(crate) fn pronoun_np(p: Pronoun) -> Np {
     }
 }
 
-/// "about", "over", "around" are quantifiers only before a number.
+/// "about", "over", "around" and "up to" are quantifiers only before a number ("leads up
+/// to the loft" is no count).
 pub(crate) fn quantifier_fits(lex: &Lexicon, tokens: &[Token], i: usize) -> bool {
     match lex.quantifier_at(tokens, i) {
-        Some((n, "about_number" | "more_than_number")) => {
+        Some((n, "about_number" | "more_than_number" | "at_most")) => {
             tokens.get(i + n).and_then(|t| lex.number(t)).is_some()
         }
         Some(_) => true,

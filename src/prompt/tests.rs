@@ -709,3 +709,16 @@ fn booths_and_areas_in_a_house_list_are_rooms() {
     let r = read("A living room with a sofa and a reading area with an armchair.");
     assert_eq!(r.rooms.len(), 1, "{:?}", r.rooms);
 }
+
+#[test]
+fn a_contrast_clause_switches_rooms_and_up_to_is_no_count() {
+    let r = read(
+        "The cottage has a kitchen and a study. The kitchen holds a dresser, whereas the study \
+         contains a desk and two bookcases.",
+    );
+    let desk = find(&r, "desk");
+    assert_eq!(r.rooms[desk.room].words, "study", "{:?}", r.rooms);
+    let r = read("A narrow stair leads up to the attic. The attic has a bed.");
+    assert!(r.mentions.iter().all(|m| m.count != Count::Exactly(0)));
+    assert_eq!(find(&r, "bed").count, Count::Exactly(1));
+}

@@ -263,7 +263,8 @@ fn open_pairs(text: &str, sents: &[(usize, usize)], rooms: &[RoomRequest]) -> Ve
             if ia + labels[a].len() > ib {
                 continue;
             }
-            let before_a = (ia.saturating_sub(3)..ia).any(open_word);
+            // Before the first room, or in its own name ("open-plan kitchen").
+            let before_a = (ia.saturating_sub(3)..ia + labels[a].len()).any(open_word);
             let between: Vec<&str> = w[ia + labels[a].len()..ib]
                 .iter()
                 .map(String::as_str)

@@ -462,7 +462,17 @@ impl<'a> Interp<'a> {
     /// After "," or "and": does a new clause start (a phrase followed by its own verb)?
     fn new_clause_follows(&self, chunks: &[Chunk], k: usize) -> bool {
         let mut j = k + 1;
-        if chunks.get(j).is_some_and(|c| c.item == Item::And) {
+        // ", and the ...", ", while the ...", ", whereas the ...": a conjunction that joins
+        // clauses.
+        let contrast = |c: &Chunk| {
+            self.tokens
+                .get(c.range.start)
+                .is_some_and(|t| matches!(t.text.as_str(), "while" | "whilst" | "whereas"))
+        };
+        if chunks
+            .get(j)
+            .is_some_and(|c| c.item == Item::And || contrast(c))
+        {
             j += 1;
         }
         if !matches!(chunks.get(j).map(|c| &c.item), Some(Item::Np(_))) {
