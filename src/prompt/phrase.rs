@@ -288,6 +288,10 @@ impl<'a> Phrase<'a> {
         if matches!(self.at(j), Some("no" | "not")) {
             np.negated = true;
             j += 1;
+            // "no longer a car", "not even a chair".
+            if matches!(self.at(j), Some("longer" | "even")) && self.at(j + 1).is_some() {
+                j += 1;
+            }
         }
         for _ in 0..4 {
             if j >= self.end {
@@ -1564,8 +1568,60 @@ fn open_head(
                 next: k,
             }
         }
-        Err(reason) => dropped(reason),
+        Err(reason) => match likeness(lex, np, &words[..name_from], last) {
+            Some(head) => Open::Object {
+                adjectives: raw[..name_from].iter().map(|w| w.to_string()).collect(),
+                noun: head.singular.clone(),
+                plural: head.singular != last,
+                head,
+                next: k,
+            },
+            None => dropped(reason),
+        },
     }
+}
+
+/// An animal made as a thing: "a stuffed giraffe" is a stuffed animal, "a ceramic owl" or
+/// "two brass elephants" figurines. `before` are the words between the modifiers and the
+/// noun `last`.
+fn likeness(lex: &Lexicon, np: &Np, before: &[&str], last: &str) -> Option<Grounded> {
+    let info = ground::noun_info(last)?;
+    if info.lexname != "noun.animal" {
+        return None;
+    }
+    let words: Vec<String> = np
+        .attrs
+        .modifiers
+        .iter()
+        .map(|m| m.to_lowercase())
+        .chain(before.iter().map(|w| w.to_string()))
+        .collect();
+    let soft = words.iter().any(|w| {
+        matches!(
+            w.as_str(),
+            "stuffed" | "plush" | "toy" | "cuddly" | "soft" | "knitted" | "inflatable"
+        )
+    });
+    let made = !np.attrs.materials.is_empty()
+        || words
+            .iter()
+            .any(|w| lex.material(w).is_some() || matches!(w.as_str(), "carved" | "model"));
+    let family = if soft {
+        "stuffed animal"
+    } else if made {
+        "figurine"
+    } else {
+        return None;
+    };
+    let entry = lex.entry_index(family)?;
+    Some(Grounded {
+        singular: info.lemma.clone(),
+        lemma: info.lemma,
+        family: Some(family.to_string()),
+        family_entry: Some(entry),
+        via: vec![family.to_string()],
+        unknown: false,
+    })
 }
 
 /// Whether the sentence places the phrase of tokens `start..next`: a spatial preposition

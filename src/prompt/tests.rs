@@ -722,3 +722,14 @@ fn a_contrast_clause_switches_rooms_and_up_to_is_no_count() {
     assert!(r.mentions.iter().all(|m| m.count != Count::Exactly(0)));
     assert_eq!(find(&r, "bed").count, Count::Exactly(1));
 }
+
+#[test]
+fn an_animal_made_as_a_thing_is_one_and_no_longer_negates() {
+    let r = read("Two brass elephants and a stuffed rabbit sit on the shelf. A cat sleeps nearby.");
+    assert_eq!(find(&r, "elephant").count, Count::Exactly(2));
+    assert!(r.mentions.iter().any(|m| m.noun == "stuffed rabbit"));
+    assert!(r.mentions.iter().all(|m| m.noun != "cat"));
+    let r = read("A radio sits on the bench, though there is no longer a car in here.");
+    assert!(find(&r, "car").negated);
+    assert_eq!(r.mentions.iter().filter(|m| m.category == "car").count(), 1);
+}
