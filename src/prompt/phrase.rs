@@ -1285,8 +1285,18 @@ fn compound_tail(
             ground::noun_lemma(&c).is_some_and(|l| l == c)
         }
     };
+    // "a bench grinder share a cart": a word WordNet knows as a verb, then a new phrase.
+    let verb_then_phrase = |k: usize| {
+        tokens.get(k).is_some_and(|t| {
+            !wn.base_forms(&t.text, crate::words::wordnet::Pos::Verb)
+                .is_empty()
+        }) && tokens
+            .get(k + 1)
+            .is_some_and(|u| lex.determiner(&u.text).is_some() || lex.number(u).is_some())
+    };
     while len < 2
         && at + len < end
+        && !(len > 0 && verb_then_phrase(at + len))
         && lex.noun_at(tokens, at + len).is_none()
         && tail_word(at + len)
         && ground::is_noun(&tokens[at + len].text)
@@ -1319,6 +1329,7 @@ fn compound_tail(
             || lex.preposition_at(tokens, at + len).is_some()
             || lex.verb(&t.text).is_some()
             || participle(&t.text)
+            || verb_then_phrase(at + len)
     });
     if !ends {
         return None;

@@ -733,3 +733,13 @@ fn an_animal_made_as_a_thing_is_one_and_no_longer_negates() {
     assert!(find(&r, "car").negated);
     assert_eq!(r.mentions.iter().filter(|m| m.category == "car").count(), 1);
 }
+
+#[test]
+fn a_verb_before_a_new_phrase_ends_a_compound() {
+    let r = read("A lathe and a bench grinder share a sturdy cart.");
+    assert!(
+        r.mentions.iter().any(|m| m.noun == "bench grinder"),
+        "{:?}",
+        r.mentions
+    );
+}
