@@ -209,8 +209,8 @@ fn score_file(path: &str, title: &str, misses_env: &str) -> Score {
 }
 
 /// Fails when a score falls under its floor: the floors sit a few points under the score
-/// measured when they were set (held-out, session of 2026-11-26: objects 82.4 %, absents
-/// 89.1 %, rooms 93.6 %, refused 4/4; dev long, 102 prompts: 90.2 %, 97.4 %, 95.9 %, 4/4).
+/// measured when they were set (held-out, session of 2026-11-27: objects 84.7 %, absents
+/// 91.3 %, rooms 93.6 %, refused 4/4; dev long, 102 prompts: 94.2 %, 97.4 %, 99.2 %, 4/4).
 fn assert_floors(s: &Score, objects: f64, absent: f64, rooms: f64) {
     let o = pct(s.objects_met, s.objects);
     let a = pct(s.absent_met, s.absent);
@@ -228,7 +228,7 @@ fn reader_on_held_out_long_prompts() {
         "reader on held-out long prompts",
         "HELDOUT_MISSES",
     );
-    assert_floors(&s, 79.0, 87.0, 91.0);
+    assert_floors(&s, 82.0, 88.0, 91.0);
 }
 
 /// The development set of the same kind: the one the reader may be tuned on.
@@ -239,5 +239,5 @@ fn reader_on_dev_long_prompts() {
         "reader on dev long prompts",
         "DEVLONG_MISSES",
     );
-    assert_floors(&s, 89.0, 94.0, 95.0);
+    assert_floors(&s, 92.0, 94.0, 97.0);
 }
