@@ -743,3 +743,10 @@ fn a_verb_before_a_new_phrase_ends_a_compound() {
         r.mentions
     );
 }
+
+#[test]
+fn each_after_a_participle_phrase_is_per_subject() {
+    let r = read("Four shelves lined with paper each hold three jars.");
+    let jar = index(&r, "jar");
+    assert_eq!(r.total(jar), Count::Exactly(12), "{:?}", r.mentions[jar]);
+}

@@ -417,17 +417,30 @@ impl Interp<'_> {
     pub(super) fn each(&mut self, c: &mut Clause, chunks: &[Chunk], k: usize) {
         let after_comma = k == 0 || matches!(chunks[k - 1].item, Item::Comma);
         let next = chunks.get(k + 1).map(|x| &x.item);
-        // "Two nightstands each hold a lamp": the subject, then "each", then its verb.
+        // "Two nightstands each hold a lamp": the subject, then "each", then its verb; also
+        // after a participle phrase of a plural subject ("Six tables covered with cloths each
+        // have two chairs").
+        let participles_only = chunks[..k].iter().all(|x| match &x.item {
+            Item::Verb(_, w) => w.ends_with("ed") || w.ends_with("ing"),
+            _ => true,
+        });
+        let subject_plural = c
+            .subject
+            .first()
+            .is_some_and(|r| r.instance.is_none() && is_plural_count(self.mentions[r.m].count));
         if !after_comma
-            && c.verb.is_none()
+            && (c.verb.is_none() || participles_only)
             && matches!(
                 chunks.get(k.wrapping_sub(1)).map(|x| &x.item),
                 Some(Item::Np(_))
             )
             && matches!(next, Some(Item::Verb(..)))
             && !c.subject.is_empty()
-            && c.last_np.first().map(|r| r.m) == c.subject.first().map(|r| r.m)
+            && (c.last_np.first().map(|r| r.m) == c.subject.first().map(|r| r.m)
+                || (c.verb.is_some() && participles_only && subject_plural))
         {
+            // The participle was no finite verb: the verb after "each" is.
+            c.verb = None;
             c.each_subject = true;
             return;
         }
