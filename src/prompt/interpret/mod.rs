@@ -716,8 +716,6 @@ impl<'a> Interp<'a> {
     }
 }
 
-/// Whether the phrase at `k` is the subject of a verb after a short insertion: "The boot room
-/// beside it holds ...", "The bakery itself has ...", "the two bedrooms each have ...".
 /// Whether the noun phrase chunk `k` is an item of a list that runs on to its last item and
 /// the end of the sentence: only phrases, commas and "and" follow, the last after an "and"
 /// ("two monitors, a docking station and a task chair.").
@@ -735,6 +733,8 @@ fn list_goes_on(chunks: &[Chunk], k: usize) -> bool {
     and_then_np
 }
 
+/// Whether the phrase at `k` is the subject of a verb after a short insertion: "The boot room
+/// beside it holds ...", "The bakery itself has ...", "the two bedrooms each have ...".
 fn subject_verb_after(chunks: &[Chunk], k: usize) -> bool {
     let item = |j: usize| chunks.get(j).map(|x| &x.item);
     let mut j = k + 1;
