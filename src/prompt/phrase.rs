@@ -506,7 +506,7 @@ impl<'a> Phrase<'a> {
         });
         lex.noun_at(tokens, j).is_some_and(|(n, ..)| n == 1)
             && !lex.is_plural(w)
-            && crate::words::wordnet::wordnet().has_pos(w, crate::words::wordnet::Pos::Adj)
+            && ground::is_adjective(w)
             && next_describes
             && j + 2 < self.end
     }
@@ -610,7 +610,7 @@ impl<'a> Phrase<'a> {
             && i > self.sentence_start
             && word(self.tokens, i - 1).is_some_and(is_linking_verb)
             && !lex.is_plural(w)
-            && crate::words::wordnet::wordnet().has_pos(w, crate::words::wordnet::Pos::Adj);
+            && ground::is_adjective(w);
         noun_len == 1
             && (lex.is_ambiguous_bare(w) || predicate || self.coordinated_adjective(w, j))
             && !evidence
@@ -620,13 +620,11 @@ impl<'a> Phrase<'a> {
     /// "Compact but efficient, this laundry room ...": a bare word WordNet also reads as an
     /// adjective, joined by a conjunction to a word that is only an adjective, is one.
     fn coordinated_adjective(&self, w: &str, j: usize) -> bool {
-        let wn = crate::words::wordnet::wordnet();
-        let adjective = |x: &str| wn.has_pos(x, crate::words::wordnet::Pos::Adj);
         !self.lex.is_plural(w)
-            && adjective(w)
+            && ground::is_adjective(w)
             && word(self.tokens, j + 1).is_some_and(|c| self.lex.is_conjunction(c))
             && word(self.tokens, j + 2)
-                .is_some_and(|x| adjective(x) && ground::only_other_pos(x).is_some())
+                .is_some_and(|x| ground::is_adjective(x) && ground::only_other_pos(x).is_some())
     }
 
     /// A room head when the words name a room at least as long as the lexicon noun there.
@@ -1520,7 +1518,6 @@ fn open_head(
         })
         .unwrap_or(words.len() - 1);
     let name = &words[name_from..];
-    let wn = crate::words::wordnet::wordnet();
     let last = words[words.len() - 1];
     let bare = np.det.is_none()
         && np.number.is_none()
@@ -1530,7 +1527,7 @@ fn open_head(
     let singular = ground::noun_lemma(last).is_some_and(|l| l == last);
     // "elegant and formal", "adds greenery": a bare word that is also an adjective, or a
     // bare singular outside a list, names no object.
-    let bare_reason = if bare && wn.has_pos(last, crate::words::wordnet::Pos::Adj) {
+    let bare_reason = if bare && ground::is_adjective(last) {
         Some("an adjective here (no determiner)")
     } else if bare && singular && !in_list {
         Some("a bare singular outside a list (a mass word here)")
@@ -1668,8 +1665,7 @@ fn room_name(lex: &Lexicon, tokens: &[Token], from: usize, at: usize, words: Str
         let Some(w) = word(tokens, k - 1) else { break };
         // Kind words stay ("common kitchen", "staff toilet"); size, colour, material, style
         // and density words describe the room and go to its attributes.
-        let noun = (wn.has_pos(w, crate::words::wordnet::Pos::Noun)
-            || wn.has_pos(w, crate::words::wordnet::Pos::Adj))
+        let noun = (wn.has_pos(w, crate::words::wordnet::Pos::Noun) || ground::is_adjective(w))
             && lex.material(w).is_none()
             && lex.color_at(tokens, k - 1).is_none()
             && lex.size_adjective(w).is_none()

@@ -252,6 +252,11 @@ pub fn is_noun(word: &str) -> bool {
     wordnet().has_pos(word, Pos::Noun)
 }
 
+/// True when WordNet knows `word` as an adjective.
+pub fn is_adjective(word: &str) -> bool {
+    wordnet().has_pos(word, Pos::Adj)
+}
+
 /// The part of speech a word has when it is not a noun ("stylish": adjective, "creating":
 /// verb, "dimly": adverb); `None` for nouns and for words WordNet does not know.
 pub fn only_other_pos(word: &str) -> Option<&'static str> {
