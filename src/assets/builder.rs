@@ -8,6 +8,7 @@
 use super::physical::{self, Fill};
 use super::procedural::shapes;
 use super::{Contact, Link, Material, Texture, VisualPart};
+use crate::geometry::convex::MAX_PIECE_VERTICES;
 use crate::geometry::{ConvexPiece, GeometryError, MassProps, TriMesh, mesh};
 use crate::scene::Pose;
 
@@ -323,7 +324,9 @@ impl LinkBuilder {
         self.collisions.len()
     }
 
-    /// Computes mass properties from the pieces and their fills and returns the link.
+    /// Computes mass properties from the pieces and their fills and returns the link, its
+    /// collision pieces simplified for contact ([`ConvexPiece::simplified`]): the mass is the
+    /// solid's as modelled, the contact geometry what the physics engines can carry.
     pub fn finish(self) -> Result<Link, GeometryError> {
         let mass = if self
             .fills
@@ -338,7 +341,11 @@ impl LinkBuilder {
             name: self.name,
             model_from_link: self.model_from_link,
             visuals: self.visuals,
-            collisions: self.collisions,
+            collisions: self
+                .collisions
+                .iter()
+                .map(|p| p.simplified(MAX_PIECE_VERTICES))
+                .collect(),
             mass,
             contact: Contact::from(&self.material),
         })

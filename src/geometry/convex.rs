@@ -90,6 +90,58 @@ impl ConvexPiece {
         Self::prism(&circle_ring(cx, cy, radius, segments), z0, z1)
     }
 
+    /// The hull of at most about `max_vertices` of the piece's vertices, with its bounds kept.
+    ///
+    /// Drake's compliant hydroelastic contact builds a tetrahedron per hull triangle, and every
+    /// polygon where two such meshes meet is a contact point its solver carries: a 32-sided
+    /// glass base on a shelf is about 60 of them, the same base with 12 sides about 20. On
+    /// each of the six axis-aligned extreme faces (a base, a top, a rim, a side) the piece
+    /// The bottom and top faces (a base, a rim, a table top) keep at most
+    /// [`MAX_FACE_VERTICES`] vertices spread around them, and each side face at least one, so
+    /// every bound, the resting height and the height of a top surface are unchanged;
+    /// farthest-point sampling over all vertices fills the rest. The result lies inside the piece (at most
+    /// `r (1 - cos(pi / 12))`, 3.4 % of the radius, inside a round piece's silhouette); a piece
+    /// whose kept points span no volume stays as it was.
+    pub fn simplified(&self, max_vertices: usize) -> ConvexPiece {
+        if self.vertices.len() <= max_vertices {
+            return self.clone();
+        }
+        let (lo, hi) = self.bounds();
+        let all: Vec<usize> = (0..self.vertices.len()).collect();
+        let mut keep: Vec<usize> = Vec::new();
+        // The base and the top first: they carry what rests on them and what the piece rests
+        // on. A side face needs one vertex to keep its bound.
+        for (axis, most) in [(2, MAX_FACE_VERTICES), (0, 1), (1, 1)] {
+            for plane in [lo[axis], hi[axis]] {
+                let on: Vec<usize> = all
+                    .iter()
+                    .copied()
+                    .filter(|&i| (self.vertices[i][axis] - plane).abs() <= FACE_TOLERANCE_M)
+                    .collect();
+                if on.iter().any(|i| keep.contains(i)) && most == 1 {
+                    continue;
+                }
+                for i in farthest_points(&self.vertices, &on, &[], most) {
+                    if !keep.contains(&i) {
+                        keep.push(i);
+                    }
+                }
+            }
+        }
+        // The fill leaves the bottom and top faces at what they kept.
+        let off_caps: Vec<usize> = all
+            .iter()
+            .copied()
+            .filter(|&i| {
+                let z = self.vertices[i][2];
+                (z - lo[2]).abs() > FACE_TOLERANCE_M && (z - hi[2]).abs() > FACE_TOLERANCE_M
+            })
+            .collect();
+        let keep = farthest_points(&self.vertices, &off_caps, &keep, max_vertices);
+        let points: Vec<[f64; 3]> = keep.iter().map(|&i| self.vertices[i]).collect();
+        ConvexPiece::from_points(&points).unwrap_or_else(|_| self.clone())
+    }
+
     /// The piece with every vertex mapped by `a_from_b`.
     pub fn transformed(&self, a_from_b: &Pose) -> ConvexPiece {
         ConvexPiece {
@@ -144,6 +196,67 @@ impl ConvexPiece {
                 points: self.vertices.len(),
             })
     }
+}
+
+/// Vertices a simplified collision piece keeps ([`ConvexPiece::simplified`]): enough for a
+/// 12-sided base and top and a round body, few enough that Drake's hydroelastic contact stays
+/// cheap.
+pub const MAX_PIECE_VERTICES: usize = 32;
+
+/// Most vertices [`ConvexPiece::simplified`] keeps on one axis-aligned extreme face.
+pub const MAX_FACE_VERTICES: usize = 12;
+
+/// A vertex this close to an extreme plane lies on that face, metres.
+const FACE_TOLERANCE_M: f64 = 1e-4;
+
+/// Greedy farthest-point sampling: `seeds`, then the candidate farthest from everything chosen,
+/// until `total` are chosen or every candidate coincides with a chosen one. Without seeds it
+/// starts from the candidate farthest from the candidates' centroid. Indices into `points`.
+fn farthest_points(
+    points: &[[f64; 3]],
+    candidates: &[usize],
+    seeds: &[usize],
+    total: usize,
+) -> Vec<usize> {
+    let dist = |a: [f64; 3], b: [f64; 3]| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
+    let mut chosen: Vec<usize> = seeds.to_vec();
+    if chosen.is_empty() {
+        let n = candidates.len().max(1) as f64;
+        let mut c = [0.0; 3];
+        for &i in candidates {
+            for k in 0..3 {
+                c[k] += points[i][k] / n;
+            }
+        }
+        let first = candidates
+            .iter()
+            .copied()
+            .max_by(|&a, &b| dist(points[a], c).total_cmp(&dist(points[b], c)));
+        chosen.extend(first);
+    }
+    let mut gap: Vec<f64> = candidates
+        .iter()
+        .map(|&i| {
+            chosen
+                .iter()
+                .map(|&j| dist(points[i], points[j]))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect();
+    while chosen.len() < total {
+        let Some((at, &far)) = gap.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)) else {
+            break;
+        };
+        if far <= 1e-9 {
+            break;
+        }
+        let next = candidates[at];
+        chosen.push(next);
+        for (g, &i) in gap.iter_mut().zip(candidates) {
+            *g = g.min(dist(points[i], points[next]));
+        }
+    }
+    chosen
 }
 
 /// Convex pieces approximating a solid of revolution about +Z: the closed `(radius, z)` profile
@@ -208,5 +321,70 @@ mod tests {
         let c = ConvexPiece::from_points(&pts).unwrap();
         assert_eq!(c.vertices.len(), 8);
         assert!(c.to_parry().is_ok());
+    }
+
+    #[test]
+    fn a_simplified_cylinder_keeps_its_bounds_and_a_twelve_sided_base() {
+        let glass = ConvexPiece::cylinder(0.0, 0.0, 0.04, 0.0, 0.1, 32).unwrap();
+        assert_eq!(glass.vertices.len(), 64);
+        let s = glass.simplified(MAX_PIECE_VERTICES);
+        // A prism has no vertex off its two rings: each keeps its twelve, and the side bounds
+        // take at most one vertex each.
+        assert!(
+            s.vertices.len() <= 2 * MAX_FACE_VERTICES + 4,
+            "{}",
+            s.vertices.len()
+        );
+        assert_eq!(s.bounds(), glass.bounds());
+        let base = s.vertices.iter().filter(|v| v[2].abs() < 1e-9).count();
+        assert!(
+            (MAX_FACE_VERTICES..=MAX_FACE_VERTICES + 4).contains(&base),
+            "{base}"
+        );
+        // Inside the original, and losing little of it.
+        assert!(s.volume() <= glass.volume() + 1e-12);
+        assert!(
+            s.volume() > 0.95 * glass.volume(),
+            "{} of {}",
+            s.volume(),
+            glass.volume()
+        );
+        let bottom_triangles = s
+            .triangles
+            .iter()
+            .filter(|t| t.iter().all(|&i| s.vertices[i as usize][2].abs() < 1e-9))
+            .count();
+        assert_eq!(bottom_triangles, base - 2);
+    }
+
+    #[test]
+    fn a_small_piece_is_not_simplified() {
+        let b = ConvexPiece::cuboid([0.0; 3], [0.3, 0.2, 0.1]).unwrap();
+        assert_eq!(b.simplified(MAX_PIECE_VERTICES), b);
+    }
+
+    #[test]
+    fn a_simplified_sphere_keeps_its_extremes() {
+        let mut pts = Vec::new();
+        for i in 0..12 {
+            for j in 1..12 {
+                let (a, b) = (
+                    std::f64::consts::TAU * i as f64 / 12.0,
+                    std::f64::consts::PI * j as f64 / 12.0,
+                );
+                pts.push([
+                    0.05 * b.sin() * a.cos(),
+                    0.05 * b.sin() * a.sin(),
+                    0.05 * b.cos(),
+                ]);
+            }
+        }
+        pts.push([0.0, 0.0, 0.05]);
+        pts.push([0.0, 0.0, -0.05]);
+        let ball = ConvexPiece::from_points(&pts).unwrap();
+        let s = ball.simplified(MAX_PIECE_VERTICES);
+        assert!(s.vertices.len() <= MAX_PIECE_VERTICES);
+        assert_eq!(s.bounds(), ball.bounds());
+        assert!(s.volume() > 0.8 * ball.volume());
     }
 }
