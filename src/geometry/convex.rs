@@ -142,6 +142,70 @@ impl ConvexPiece {
         ConvexPiece::from_points(&points).unwrap_or_else(|_| self.clone())
     }
 
+    /// Small pieces inside this one at the corners of its bottom face, for point contact.
+    ///
+    /// Point contact (Drake's `point` model, SceneEval's protocol) gives one contact point per
+    /// pair of pieces: a 3 m counter whose plinth is one box, or a printer on a cabinet top,
+    /// rests on a single point and rocks and walks. Each pad is a small box flush with the
+    /// bottom face at one of its four most spread corners, reaching inwards; it is kept only
+    /// where it lies inside the piece (shrunk up to three times to fit), so the shape, the
+    /// bounds and every other contact stay as they were, and the piece rests on four points or
+    /// more. A bottom face narrower than `min_extent` (metres) gets none.
+    pub fn corner_pads(&self, min_extent: f64) -> Vec<ConvexPiece> {
+        let (lo, _) = self.bounds();
+        let bottom: Vec<usize> = (0..self.vertices.len())
+            .filter(|&i| (self.vertices[i][2] - lo[2]).abs() <= FACE_TOLERANCE_M)
+            .collect();
+        let corners = farthest_points(&self.vertices, &bottom, &[], 4);
+        let extent = |axis: usize| {
+            let vals = bottom.iter().map(|&i| self.vertices[i][axis]);
+            vals.clone().fold(f64::NEG_INFINITY, f64::max) - vals.fold(f64::INFINITY, f64::min)
+        };
+        if corners.len() < 3 || extent(0).max(extent(1)) < min_extent {
+            return Vec::new();
+        }
+        let n = bottom.len() as f64;
+        let centre: [f64; 2] =
+            [0, 1].map(|k| bottom.iter().map(|&i| self.vertices[i][k]).sum::<f64>() / n);
+        corners
+            .iter()
+            .filter_map(|&i| {
+                let p = self.vertices[i];
+                let inward = [0, 1].map(|k| if centre[k] >= p[k] { 1.0 } else { -1.0 });
+                let mut side = PAD_M;
+                for _ in 0..4 {
+                    let corner = |sx: f64, sy: f64, sz: f64| {
+                        [
+                            p[0] + inward[0] * sx * side,
+                            p[1] + inward[1] * sy * side,
+                            p[2] + sz * side / 2.0,
+                        ]
+                    };
+                    let points: Vec<[f64; 3]> = [0.0, 1.0]
+                        .into_iter()
+                        .flat_map(|sx| [0.0, 1.0].map(move |sy| (sx, sy)))
+                        .flat_map(|(sx, sy)| [corner(sx, sy, 0.0), corner(sx, sy, 1.0)])
+                        .collect();
+                    if points.iter().all(|q| self.contains(*q)) {
+                        return ConvexPiece::from_points(&points).ok();
+                    }
+                    side /= 2.0;
+                }
+                None
+            })
+            .collect()
+    }
+
+    /// Whether `point` lies inside the piece or on its boundary (1e-9 m).
+    pub fn contains(&self, point: [f64; 3]) -> bool {
+        self.triangles.iter().all(|t| {
+            let [a, b, c] = t.map(|i| nalgebra::Vector3::from(self.vertices[i as usize]));
+            let n = (b - a).cross(&(c - a));
+            let len = n.norm();
+            len <= 0.0 || n.dot(&(nalgebra::Vector3::from(point) - a)) / len <= 1e-9
+        })
+    }
+
     /// The piece with every vertex mapped by `a_from_b`.
     pub fn transformed(&self, a_from_b: &Pose) -> ConvexPiece {
         ConvexPiece {
@@ -205,6 +269,9 @@ pub const MAX_PIECE_VERTICES: usize = 32;
 
 /// Most vertices [`ConvexPiece::simplified`] keeps on one axis-aligned extreme face.
 pub const MAX_FACE_VERTICES: usize = 12;
+
+/// How far a contact pad reaches from its corner, metres.
+const PAD_M: f64 = 0.02;
 
 /// A vertex this close to an extreme plane lies on that face, metres.
 const FACE_TOLERANCE_M: f64 = 1e-4;
@@ -386,5 +453,34 @@ mod tests {
         assert!(s.vertices.len() <= MAX_PIECE_VERTICES);
         assert_eq!(s.bounds(), ball.bounds());
         assert!(s.volume() > 0.8 * ball.volume());
+    }
+
+    #[test]
+    fn a_wide_base_gets_four_pads_inside_it_touching_the_floor() {
+        let plinth = ConvexPiece::cuboid([0.0, 0.0, 0.05], [3.0, 0.5, 0.1]).unwrap();
+        let pads = plinth.corner_pads(0.05);
+        assert_eq!(pads.len(), 4);
+        let (lo, hi) = plinth.bounds();
+        let mut corners_seen = Vec::new();
+        for pad in &pads {
+            let (plo, phi) = pad.bounds();
+            assert!((plo[2] - lo[2]).abs() < 1e-12, "a pad rests on the floor");
+            assert!((0..3).all(|k| plo[k] >= lo[k] - 1e-12 && phi[k] <= hi[k] + 1e-12));
+            assert!(pad.volume() > 0.0);
+            corners_seen.push([plo[0] < 0.0, plo[1] < 0.0]);
+        }
+        corners_seen.sort();
+        corners_seen.dedup();
+        assert_eq!(corners_seen.len(), 4, "one pad per corner");
+        // A round base gets its pads where they fit inside it.
+        let tin = ConvexPiece::cylinder(0.0, 0.0, 0.05, 0.0, 0.1, 12).unwrap();
+        let pads = tin.corner_pads(0.05);
+        assert!(pads.len() >= 3, "{}", pads.len());
+        for pad in &pads {
+            assert!(pad.vertices.iter().all(|v| tin.contains(*v)));
+        }
+        // A small base gets none.
+        let die = ConvexPiece::cuboid([0.0, 0.0, 0.01], [0.02, 0.02, 0.02]).unwrap();
+        assert!(die.corner_pads(0.05).is_empty());
     }
 }

@@ -4,6 +4,7 @@
 use super::*;
 use crate::assets::articulated::{check_configurations, self_collisions};
 use crate::assets::physical::hull_cap;
+use crate::geometry::convex::{MAX_FACE_VERTICES, MAX_PIECE_VERTICES};
 
 fn extents(asset: &Asset) -> ([f64; 3], [f64; 3], [f64; 3]) {
     let [lo, hi] = asset.bounds();
@@ -107,6 +108,24 @@ fn check_category(cat: &str) -> Result<(), String> {
                 .map_err(|e| format!("{}: {e}", link.name))?;
             if link.collisions.iter().any(|c| c.volume() <= 0.0) {
                 return Err("empty piece".into());
+            }
+            // Simplified for contact: few vertices, few on a base or a top.
+            for c in &link.collisions {
+                let (lo, hi) = c.bounds();
+                let on = |z: f64| {
+                    c.vertices
+                        .iter()
+                        .filter(|v| (v[2] - z).abs() <= 1e-4)
+                        .count()
+                };
+                let caps = on(lo[2]).max(on(hi[2]));
+                if c.vertices.len() > MAX_PIECE_VERTICES || caps > MAX_FACE_VERTICES + 4 {
+                    return Err(format!(
+                        "{}: a piece of {} vertices, {caps} on a cap",
+                        link.name,
+                        c.vertices.len()
+                    ));
+                }
             }
         }
         let range = &asset.provenance["physics"]["mass_range_kg"];
@@ -370,4 +389,27 @@ fn generic_shapes_are_marked() {
         assert_eq!(a.category, "flux_capacitor");
         a.validate().unwrap();
     }
+}
+
+#[test]
+fn what_stands_on_one_piece_gets_contact_pads_and_legs_do_not() {
+    let feet = |cat: &str| {
+        let asset = build(&AssetRequest::new(cat, 3)).expect("builds");
+        let root = &asset.links[0];
+        let lowest = root
+            .collisions
+            .iter()
+            .map(|c| c.bounds().0[2])
+            .fold(f64::INFINITY, f64::min);
+        root.collisions
+            .iter()
+            .filter(|c| c.bounds().0[2] <= lowest + 1e-4)
+            .count()
+    };
+    // A plinth: the piece and its four pads.
+    assert!(feet("bar_counter") >= 4, "{}", feet("bar_counter"));
+    // Small objects get none (each pad is a compliant piece Drake's contact carries).
+    assert_eq!(feet("printer"), 1);
+    // Four legs stay four.
+    assert_eq!(feet("dining_table"), 4);
 }
