@@ -448,6 +448,19 @@ fn is_wood(name: &str) -> bool {
     )
 }
 
+/// The pieces of `link` that reach its lowest level (within 0.1 mm): what it stands on.
+fn feet(link: &Link) -> Vec<&ConvexPiece> {
+    let lowest = link
+        .collisions
+        .iter()
+        .map(|c| c.bounds().0[2])
+        .fold(f64::INFINITY, f64::min);
+    link.collisions
+        .iter()
+        .filter(|c| c.bounds().0[2] <= lowest + 1e-4)
+        .collect()
+}
+
 /// A bottom face at least this wide gets contact pads ([`ConvexPiece::corner_pads`]), metres.
 const PAD_MIN_EXTENT_M: f64 = 0.05;
 
@@ -460,16 +473,7 @@ const PAD_MIN_EXTENT_M: f64 = 0.05;
 /// already give a point each and get none: a filing cabinet on two side panels and a back
 /// plinth with pads besides slid 3 cm under point contact, without them it stays.
 fn add_corner_pads(link: &mut Link, room: usize) {
-    let lowest = link
-        .collisions
-        .iter()
-        .map(|c| c.bounds().0[2])
-        .fold(f64::INFINITY, f64::min);
-    let feet: Vec<&ConvexPiece> = link
-        .collisions
-        .iter()
-        .filter(|c| c.bounds().0[2] <= lowest + 1e-4)
-        .collect();
+    let feet = feet(link);
     // Three pieces on the floor (legs, side panels) already give three points.
     if feet.len() >= 3 {
         return;
