@@ -580,37 +580,6 @@ mod tests {
     }
 
     #[test]
-    fn every_room_of_a_role_gets_its_small_pieces_unless_excluded_or_minimal() {
-        // A bedroom's own list has no bin: the private role's floor pieces bring one.
-        let bedroom = plan_room(&prompt::read("A bedroom with a bed and a wardrobe."));
-        assert_eq!(bedroom.count_of("trash can"), 1, "{:?}", bedroom.furniture);
-        assert_eq!(
-            bedroom
-                .wall
-                .iter()
-                .filter(|w| w.noun == "wall shelf")
-                .count(),
-            1
-        );
-        let bath = plan_room(&prompt::read("A bathroom with a bathtub and a toilet."));
-        assert_eq!(bath.count_of("trash can"), 1, "{:?}", bath.furniture);
-        // The prompt's negation and a minimal room win.
-        let no_bin = plan_room(&prompt::read("A bedroom with a bed and no trash can."));
-        assert_eq!(no_bin.count_of("trash can"), 0, "{:?}", no_bin.furniture);
-        let minimal = plan_room(&prompt::read("A minimalist bedroom with a bed."));
-        assert_eq!(minimal.count_of("trash can"), 0, "{:?}", minimal.furniture);
-        // A piece the room's own list already has is not doubled.
-        let office = plan_room(&prompt::read("A home office."));
-        let plants: u32 = office
-            .furniture
-            .iter()
-            .filter(|w| w.noun == "plant")
-            .map(|w| w.count)
-            .sum();
-        assert_eq!(plants, 1, "{:?}", office.furniture);
-    }
-
-    #[test]
     fn a_table_for_n_seats_n() {
         let plan = plan_room(&prompt::read(
             "A dining room with a long table for six people and a rug.",

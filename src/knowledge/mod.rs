@@ -179,22 +179,10 @@ pub struct SurfaceRule {
     pub place_settings: bool,
 }
 
-/// The small pieces any room of one role usually has, whatever its type.
-#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
-pub struct RolePieces {
-    /// Standing on the floor (a bin, a plant).
-    #[serde(default)]
-    pub floor: Vec<KbItem>,
-    /// Mounted on a wall (a shelf).
-    #[serde(default)]
-    pub wall: Vec<KbItem>,
-}
-
 #[derive(Debug, Deserialize)]
 struct ObjectFile {
     placement: BTreeMap<String, Place>,
     seats: BTreeMap<String, (String, u32)>,
-    role_pieces: BTreeMap<Role, RolePieces>,
     surfaces: Vec<SurfaceRule>,
 }
 
@@ -215,7 +203,6 @@ pub struct Knowledge {
     rooms: Registry,
     placement: BTreeMap<String, Place>,
     seats: BTreeMap<String, (String, u32)>,
-    role_pieces: BTreeMap<Role, RolePieces>,
     surfaces: Vec<SurfaceRule>,
 }
 
@@ -229,7 +216,6 @@ impl Knowledge {
             rooms,
             placement: o.placement,
             seats: o.seats,
-            role_pieces: o.role_pieces,
             surfaces: o.surfaces,
         })
     }
@@ -283,11 +269,6 @@ impl Knowledge {
     /// The seat that goes with a table-like parent and how many per parent.
     pub fn seat_for(&self, parent: &str) -> Option<(&str, u32)> {
         self.seats.get(parent).map(|(s, n)| (s.as_str(), *n))
-    }
-
-    /// The small pieces every room of `role` usually has (a bin, a plant, a wall shelf).
-    pub fn role_pieces(&self, role: Role) -> Option<&RolePieces> {
-        self.role_pieces.get(&role)
     }
 
     /// Room-independent surface rule of a parent noun.

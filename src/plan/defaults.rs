@@ -249,21 +249,6 @@ impl Builder<'_> {
         for item in &rt.ceiling {
             add(self, item, Support::Ceiling);
         }
-        // The small pieces any room of its role has (a bin, a plant, a wall shelf), unless
-        // the room's own lists already placed one.
-        if let Some(pieces) = self.kb.role_pieces(rt.role) {
-            let both = [
-                (&pieces.floor, Support::Floor),
-                (&pieces.wall, Support::Wall),
-            ];
-            for (items, support) in both {
-                for item in items {
-                    if !self.has(&item.noun) {
-                        add(self, item, support);
-                    }
-                }
-            }
-        }
         // Seats for table-like pieces the prompt named "with chairs" but without a count are
         // handled by `count`; seats for set tables by `place_settings`.
     }
