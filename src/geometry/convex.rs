@@ -93,45 +93,50 @@ impl ConvexPiece {
     /// The hull of at most about `max_vertices` of the piece's vertices, with its bounds kept.
     ///
     /// Drake's compliant hydroelastic contact builds a tetrahedron per hull triangle, and every
-    /// polygon where two such meshes meet is a contact point its solver carries: a 32-sided
-    /// glass base on a shelf is about 60 of them, the same base with 12 sides about 20. The
-    /// bottom and top faces (a base, a rim, a table top) keep at most [`MAX_FACE_VERTICES`]
-    /// vertices spread around them, and each side face at least one, so every bound, the
-    /// resting height and the height of a top surface are unchanged; farthest-point sampling
-    /// over the other vertices fills the rest. The result lies inside the piece (at most
-    /// `r (1 - cos(pi / 12))`, 3.4 % of the radius, inside a round piece's silhouette); a piece
-    /// whose kept points span no volume, or whose bottom or top is rounded, stays as it was.
+    /// polygon where two such meshes meet is a contact point its solver carries: a glass base
+    /// of 16 sides on a shelf is about 58 of them, of 6 sides about 22. The bottom face (what
+    /// the piece rests on) keeps at most [`MAX_BASE_VERTICES`] vertices spread around it and
+    /// the top face (what carries other things) at most [`MAX_FACE_VERTICES`]; each side face
+    /// keeps at least one, taken off the bottom face where it can be. Every bound, the resting
+    /// height and the height of a top surface are unchanged; farthest-point sampling over the
+    /// other vertices fills the rest. The result lies inside the piece: a round top at most
+    /// `r (1 - cos(pi / 12))` (3.4 % of the radius) inside its silhouette, a round base at most
+    /// `r (1 - cos(pi / 6))` (13 %), a chamfer along the bottom edge. A piece whose kept points
+    /// span no volume, or whose bottom or top is rounded, stays as it was.
     pub fn simplified(&self, max_vertices: usize) -> ConvexPiece {
         let (lo, hi) = self.bounds();
+        let bottom = self.on_plane(2, lo[2]);
+        let top = self.on_plane(2, hi[2]);
         // A rounded bottom or top (a pole, an edge) rests on the rings just above it: a toilet
         // pedestal simplified there stood on a cone and tipped 8 degrees. It stays as it is.
-        let rounded = [lo[2], hi[2]]
-            .iter()
-            .any(|&z| self.on_plane(2, z).len() < 3);
-        if self.vertices.len() <= max_vertices || rounded {
+        let rounded = bottom.len() < 3 || top.len() < 3;
+        if rounded || (self.vertices.len() <= max_vertices && bottom.len() <= MAX_BASE_VERTICES) {
             return self.clone();
         }
-        let mut keep: Vec<usize> = Vec::new();
         // The base and the top first: they carry what rests on them and what the piece rests
-        // on. A side face needs one vertex to keep its bound.
-        for (axis, most) in [(2, MAX_FACE_VERTICES), (0, 1), (1, 1)] {
+        // on.
+        let mut keep = farthest_points(&self.vertices, &bottom, &[], MAX_BASE_VERTICES);
+        for i in farthest_points(&self.vertices, &top, &[], MAX_FACE_VERTICES) {
+            if !keep.contains(&i) {
+                keep.push(i);
+            }
+        }
+        // A side face needs one vertex to keep its bound; one off the base if it has one.
+        for axis in [0, 1] {
             for plane in [lo[axis], hi[axis]] {
                 let on = self.on_plane(axis, plane);
-                if on.iter().any(|i| keep.contains(i)) && most == 1 {
+                if on.iter().any(|i| keep.contains(i)) {
                     continue;
                 }
-                for i in farthest_points(&self.vertices, &on, &[], most) {
-                    if !keep.contains(&i) {
-                        keep.push(i);
-                    }
-                }
+                let off_base: Vec<usize> =
+                    on.iter().copied().filter(|i| !bottom.contains(i)).collect();
+                let from = if off_base.is_empty() { &on } else { &off_base };
+                keep.extend(from.first().copied());
             }
         }
         // The fill leaves the bottom and top faces at what they kept.
-        let caps = [self.on_plane(2, lo[2]), self.on_plane(2, hi[2])].concat();
-
         let off_caps: Vec<usize> = (0..self.vertices.len())
-            .filter(|i| !caps.contains(i))
+            .filter(|i| !bottom.contains(i) && !top.contains(i))
             .collect();
         let keep = farthest_points(&self.vertices, &off_caps, &keep, max_vertices);
         let points: Vec<[f64; 3]> = keep.iter().map(|&i| self.vertices[i]).collect();
@@ -283,8 +288,12 @@ impl ConvexPiece {
 /// cheap.
 pub const MAX_PIECE_VERTICES: usize = 32;
 
-/// Most vertices [`ConvexPiece::simplified`] keeps on one axis-aligned extreme face.
+/// Most vertices [`ConvexPiece::simplified`] keeps on a piece's top face.
 pub const MAX_FACE_VERTICES: usize = 12;
+
+/// Most vertices [`ConvexPiece::simplified`] keeps on a piece's bottom face: a hexagon rests
+/// as steadily as a circle and makes a third of the contact polygons of a 16-sided base.
+pub const MAX_BASE_VERTICES: usize = 6;
 
 /// How far a contact pad reaches from its corner, metres.
 const PAD_M: f64 = 0.02;
@@ -407,27 +416,34 @@ mod tests {
     }
 
     #[test]
-    fn a_simplified_cylinder_keeps_its_bounds_and_a_twelve_sided_base() {
+    fn a_simplified_cylinder_keeps_its_bounds_a_six_sided_base_and_a_twelve_sided_top() {
         let glass = ConvexPiece::cylinder(0.0, 0.0, 0.04, 0.0, 0.1, 32).unwrap();
         assert_eq!(glass.vertices.len(), 64);
         let s = glass.simplified(MAX_PIECE_VERTICES);
-        // A prism has no vertex off its two rings: each keeps its twelve, and the side bounds
-        // take at most one vertex each.
+        // A prism has no vertex off its two rings: the base keeps six, the top twelve and the
+        // side bounds take one each, off the base.
         assert!(
-            s.vertices.len() <= 2 * MAX_FACE_VERTICES + 4,
+            s.vertices.len() <= MAX_BASE_VERTICES + MAX_FACE_VERTICES + 4,
             "{}",
             s.vertices.len()
         );
         assert_eq!(s.bounds(), glass.bounds());
-        let base = s.vertices.iter().filter(|v| v[2].abs() < 1e-9).count();
+        let at = |z: f64| {
+            s.vertices
+                .iter()
+                .filter(|v| (v[2] - z).abs() < 1e-9)
+                .count()
+        };
+        assert_eq!(at(0.0), MAX_BASE_VERTICES);
         assert!(
-            (MAX_FACE_VERTICES..=MAX_FACE_VERTICES + 4).contains(&base),
-            "{base}"
+            (MAX_FACE_VERTICES..=MAX_FACE_VERTICES + 4).contains(&at(0.1)),
+            "{}",
+            at(0.1)
         );
         // Inside the original, and losing little of it.
         assert!(s.volume() <= glass.volume() + 1e-12);
         assert!(
-            s.volume() > 0.95 * glass.volume(),
+            s.volume() > 0.85 * glass.volume(),
             "{} of {}",
             s.volume(),
             glass.volume()
@@ -437,7 +453,22 @@ mod tests {
             .iter()
             .filter(|t| t.iter().all(|&i| s.vertices[i as usize][2].abs() < 1e-9))
             .count();
-        assert_eq!(bottom_triangles, base - 2);
+        assert_eq!(bottom_triangles, MAX_BASE_VERTICES - 2);
+    }
+
+    #[test]
+    fn a_small_piece_with_a_many_sided_base_gets_a_six_sided_one() {
+        let jar = ConvexPiece::cylinder(0.0, 0.0, 0.03, 0.0, 0.08, 10).unwrap();
+        assert!(jar.vertices.len() <= MAX_PIECE_VERTICES);
+        let s = jar.simplified(MAX_PIECE_VERTICES);
+        assert_eq!(s.bounds(), jar.bounds());
+        let at = |z: f64| {
+            s.vertices
+                .iter()
+                .filter(|v| (v[2] - z).abs() < 1e-9)
+                .count()
+        };
+        assert_eq!((at(0.0), at(0.08)), (MAX_BASE_VERTICES, 10));
     }
 
     #[test]

@@ -4,7 +4,7 @@
 use super::*;
 use crate::assets::articulated::{check_configurations, self_collisions};
 use crate::assets::physical::hull_cap;
-use crate::geometry::convex::{MAX_FACE_VERTICES, MAX_PIECE_VERTICES};
+use crate::geometry::convex::{MAX_BASE_VERTICES, MAX_FACE_VERTICES, MAX_PIECE_VERTICES};
 
 fn extents(asset: &Asset) -> ([f64; 3], [f64; 3], [f64; 3]) {
     let [lo, hi] = asset.bounds();
@@ -119,11 +119,15 @@ fn check_category(cat: &str) -> Result<(), String> {
                         .filter(|v| (v[2] - z).abs() <= 1e-4)
                         .count()
                 };
-                let caps = on(lo[2]).max(on(hi[2]));
-                let flat = on(lo[2]) >= 3 && on(hi[2]) >= 3;
-                if flat && (c.vertices.len() > MAX_PIECE_VERTICES || caps > MAX_FACE_VERTICES + 4) {
+                let (base, top) = (on(lo[2]), on(hi[2]));
+                let flat = base >= 3 && top >= 3;
+                if flat
+                    && (c.vertices.len() > MAX_PIECE_VERTICES
+                        || base > MAX_BASE_VERTICES + 4
+                        || top > MAX_FACE_VERTICES + 4)
+                {
                     return Err(format!(
-                        "{}: a piece of {} vertices, {caps} on a cap",
+                        "{}: a piece of {} vertices, {base} on its base, {top} on its top",
                         link.name,
                         c.vertices.len()
                     ));
