@@ -40,5 +40,6 @@ pub mod render;
 pub mod scene;
 pub mod stages;
 pub mod state;
+pub mod task;
 pub mod util;
 pub mod words;

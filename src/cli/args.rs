@@ -173,6 +173,34 @@ pub(crate) enum Command {
         #[arg(long)]
         full_stb: bool,
     },
+    /// Turn a pick-and-place task into scene prompts: read the task (object to move, goal
+    /// relation on / inside / near, reference, start), pick the room types that fit, write
+    /// DIR/task.json and N varied prompts to DIR/prompts.jsonl. With --generate, also build
+    /// each scene under DIR/scenes/<id>, check it (required objects present, goal false at the
+    /// start), try another seed when it fails, and write DIR/scenes.jsonl; finished scenes
+    /// are kept when run again.
+    Task {
+        /// The task, e.g. "pick up the mug from the table and put it on the shelf".
+        task: String,
+        /// How many scene prompts.
+        #[arg(long, default_value_t = 5)]
+        scenes: usize,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Seed of the prompts (and of the first attempt at each scene).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Generate and check the scenes too.
+        #[arg(long)]
+        generate: bool,
+        /// Attempts per scene before it is reported unusable.
+        #[arg(long, default_value_t = 3)]
+        attempts: u32,
+        /// Skip the stability simulations of each scene's metrics.json.
+        #[arg(long)]
+        no_stb: bool,
+    },
     /// Lay out the rooms of a prompt (no furniture, no files): print the floor plan and the
     /// validation (with --json: every room, door, window and the checks).
     Layout {

@@ -4,12 +4,14 @@
 
 pub mod args;
 pub mod commands;
+pub mod task;
 
 use std::process::ExitCode;
 
 use args::{Cli, Command, UsageError};
 use commands::*;
 use scenesmith::pipeline::GenerateOptions;
+use task::{TaskRun, run_task};
 
 /// Runs one parsed command line; prints an error once, with its causes, and returns the exit
 /// code.
@@ -84,6 +86,26 @@ pub fn run(cli: Cli) -> ExitCode {
             full_stb,
         } => run_eval(cli.json, dir, robot_radius, no_stb, contact, full_stb),
         Command::Layout { prompt, seed, png } => run_layout(cli.json, &prompt, seed, png),
+        Command::Task {
+            task,
+            scenes,
+            out,
+            seed,
+            generate,
+            attempts,
+            no_stb,
+        } => run_task(
+            cli.json,
+            &task,
+            &out,
+            TaskRun {
+                scenes,
+                seed,
+                generate,
+                attempts,
+                stb: !no_stb,
+            },
+        ),
     };
     match result {
         Ok(code) => code,
