@@ -15,7 +15,7 @@
 //!
 //! They form layers without import cycles (`tests/module_layers.rs`), bottom to top: scene,
 //! geometry, util, words, knowledge, prompt, assets, state, agents, formats, physics, eval,
-//! plan, render, layout, stages, export, pipeline.
+//! plan, render, layout, stages, export, pipeline, task.
 //!
 //! This crate does not render, simulate or plan by itself: Drake (through `drake_bridge/`)
 //! does the simulation.
