@@ -8,7 +8,7 @@ import numpy as np
 from pydrake.geometry import Role
 from pydrake.multibody.tree import ModelInstanceIndex
 
-from drake_bridge import BRIDGE_VERSION, PROTOCOL, asset_checks, layout_checks, projection, settle
+from drake_bridge import BRIDGE_VERSION, PROTOCOL, asset_checks, layout_checks, projection, robot_ops, settle
 from drake_bridge.conformance import op_mujoco_check, op_usd_check
 from drake_bridge.errors import BadRequest
 from drake_bridge.plant_cache import CACHE
@@ -169,6 +169,7 @@ def op_collision_report(args):
 
 OPS = {
     **asset_checks.OPS,
+    **robot_ops.OPS,
     "ping": op_ping,
     "versions": op_versions,
     "load": op_load,

@@ -655,6 +655,58 @@ class UsdCheckReply:
     articulations: list[UsdArticulation]
 
 
+# --------------------------------------------------------------------------- robot (robot_ops.py)
+
+
+@dataclass
+class EpisodeArgs:
+    scene_dir: str
+    predicate: Literal["on", "inside", "near"]
+    target: str
+    reference: str
+    policy: Literal["standard", "degraded"]
+    out_dir: str
+    seed: int
+    frames: bool
+
+
+@dataclass
+class EpisodeReply:
+    success: bool
+    failure_reason: Optional[str]
+    message: str
+    timings_s: dict[str, float]
+    simulated_s: float
+    max_gripper_speed: float
+    welded: int
+    after: Optional[str]
+    files: list[str]
+
+
+@dataclass
+class JudgeArgs:
+    scene_dir: str
+    directives: str
+    predicate: Literal["on", "inside", "near"]
+    targets: list[str]
+    references: list[str]
+
+
+@dataclass
+class PairVerdict:
+    target: str
+    reference: str
+    holds: bool
+    reason: str
+    evidence: dict[str, float]
+
+
+@dataclass
+class JudgeReply:
+    pairs: list[PairVerdict]
+    thresholds: dict[str, float]
+
+
 # --------------------------------------------------------------------------- the operations
 
 #: op name -> (argument type, reply type); the handlers are registered in drake_bridge.ops.
@@ -673,4 +725,6 @@ SIGNATURES = {
     "assets_push": (AssetsPushArgs, AssetsPushReply),
     "mujoco_check": (MujocoCheckArgs, MujocoCheckReply),
     "usd_check": (UsdCheckArgs, UsdCheckReply),
+    "policy_episode": (EpisodeArgs, EpisodeReply),
+    "judge_task": (JudgeArgs, JudgeReply),
 }

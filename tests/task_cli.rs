@@ -5,6 +5,8 @@ mod common;
 
 use common::{scenesmith, text};
 use scenesmith::formats::scene_dir::read_scene;
+use scenesmith::physics::protocol::{JudgeArgs, JudgeTask, TaskPredicate};
+use scenesmith::physics::{Bridge, BridgeConfig};
 use scenesmith::scene::Support;
 use scenesmith::task::{TaskSpec, check_scene};
 
@@ -80,6 +82,37 @@ fn generated_task_scenes_hold_the_objects_with_the_goal_false_and_are_kept_on_a_
     let mut scene = read_scene(&dir).expect("the scene was written");
     let check = check_scene(&spec, &scene);
     assert!(check.passed(), "{check:?}");
+    // The built-in evaluator in Drake agrees: the mug is on what it was placed on, not on the
+    // coffee table.
+    let mug = scene
+        .object(&check.bindable[0])
+        .expect("the bindable mug is an object");
+    let Support::Object { parent, .. } = &mug.support else {
+        panic!("the mug rests on an object: {:?}", mug.support);
+    };
+    let mut bridge = Bridge::start(BridgeConfig::from_env()).expect("the Drake bridge starts");
+    let verdict = bridge
+        .call::<JudgeTask>(&JudgeArgs {
+            scene_dir: dir.clone(),
+            directives: "scene.dmd.yaml".into(),
+            predicate: TaskPredicate::On,
+            targets: vec![mug.id.clone()],
+            references: vec![parent.clone(), check.references[0].clone()],
+        })
+        .expect("judge_task");
+    let holds: Vec<(&str, bool)> = verdict
+        .pairs
+        .iter()
+        .map(|p| (p.reference.as_str(), p.holds))
+        .collect();
+    assert_eq!(
+        holds,
+        [
+            (parent.as_str(), true),
+            (check.references[0].as_str(), false)
+        ],
+        "{verdict:?}"
+    );
     // The check can fail: put every mug on the coffee table and the goal holds at the start.
     let table = check.references[0].clone();
     for o in scene
@@ -102,4 +135,66 @@ fn generated_task_scenes_hold_the_objects_with_the_goal_false_and_are_kept_on_a_
     assert!(again.status.success(), "{}", text(&again));
     let rows = lines(&out.join("scenes.jsonl"));
     assert_eq!(rows[0]["attempts"].as_u64(), Some(0), "{}", rows[0]);
+}
+
+#[test]
+fn robot_eval_binds_judges_and_runs_an_episode_per_policy() {
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("r");
+    let o = out.to_str().unwrap();
+    let r = scenesmith(
+        &[
+            "robot-eval",
+            "put the mug on the coffee table",
+            "--scenes",
+            "1",
+            "--policy",
+            "standard",
+            "--out",
+            o,
+            "--no-frames",
+            "--json",
+        ],
+        &[],
+    );
+    assert!(r.status.success(), "{}", text(&r));
+    let results: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("results.json")).unwrap()).unwrap();
+    let binding = &results["bindings"][0];
+    assert!(
+        binding["target"].is_string() && binding["reference"].is_string(),
+        "{binding}"
+    );
+    let episodes = results["episodes"].as_array().expect("episodes");
+    assert_eq!(episodes.len(), 1);
+    let outcome = episodes[0]["outcome"].as_str().unwrap_or_default();
+    let known = [
+        "success",
+        "placed_wrong",
+        "no_base_pose",
+        "no_grasp",
+        "ik",
+        "planning",
+        "dropped",
+        "timeout",
+    ];
+    assert!(known.contains(&outcome), "{}", episodes[0]);
+    assert!(
+        !episodes[0]["reason"]
+            .as_str()
+            .unwrap_or_default()
+            .is_empty()
+    );
+    let summary = &results["summary"][0];
+    assert_eq!(summary["policy"], "standard");
+    assert_eq!(summary["episodes"], 1);
+    let ci = summary["ci95"].as_array().expect("ci95");
+    let (lo, hi) = (ci[0].as_f64().unwrap(), ci[1].as_f64().unwrap());
+    let rate = summary["rate"].as_f64().unwrap();
+    assert!(lo <= rate && rate <= hi && hi - lo > 0.5, "{summary}");
+    // An executed episode wrote the after-file the evaluator judged.
+    if outcome == "success" || outcome == "placed_wrong" {
+        let after = out.join("episodes/scene_000/standard/after_standard.dmd.yaml");
+        assert!(after.exists(), "{}", after.display());
+    }
 }

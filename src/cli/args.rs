@@ -201,6 +201,38 @@ pub(crate) enum Command {
         #[arg(long)]
         no_stb: bool,
     },
+    /// Evaluate robot policies on a task: the task's scenes (as `task --generate`), each bound
+    /// to one object and reference with the goal judged false at the start, one episode per
+    /// policy (the mobile iiwa, planned and simulated in Drake) in parallel on the bridge pool,
+    /// the final state judged by the built-in evaluator. Writes DIR/results.json and prints
+    /// success rates with 95 % intervals and a row per episode with its outcome.
+    RobotEval {
+        /// The task, e.g. "put the mug on the coffee table".
+        task: String,
+        /// How many scenes.
+        #[arg(long, default_value_t = 3)]
+        scenes: usize,
+        /// Policies: a comma-separated list of standard, degraded.
+        #[arg(
+            long,
+            value_enum,
+            value_delimiter = ',',
+            default_value = "standard,degraded"
+        )]
+        policy: Vec<PolicyArg>,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Seed of the prompts, the scenes and the episodes.
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Attempts per scene before it is reported unusable.
+        #[arg(long, default_value_t = 3)]
+        attempts: u32,
+        /// Skip the rendered frames and flipbook of each episode.
+        #[arg(long)]
+        no_frames: bool,
+    },
     /// Lay out the rooms of a prompt (no furniture, no files): print the floor plan and the
     /// validation (with --json: every room, door, window and the checks).
     Layout {
@@ -226,6 +258,22 @@ pub(crate) struct UsageError(pub(crate) String);
 /// Returns `e` as a usage error (exit code 2).
 pub(crate) fn usage(e: impl std::fmt::Display) -> anyhow::Error {
     UsageError(e.to_string()).into()
+}
+
+/// `--policy` of `robot-eval`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum PolicyArg {
+    Standard,
+    Degraded,
+}
+
+impl From<PolicyArg> for scenesmith::physics::protocol::PolicyKind {
+    fn from(p: PolicyArg) -> Self {
+        match p {
+            PolicyArg::Standard => Self::Standard,
+            PolicyArg::Degraded => Self::Degraded,
+        }
+    }
 }
 
 /// `--stage` of `asset`.

@@ -11,7 +11,7 @@ use std::process::ExitCode;
 use args::{Cli, Command, UsageError};
 use commands::*;
 use scenesmith::pipeline::GenerateOptions;
-use task::{TaskRun, run_task};
+use task::{TaskRun, run_robot_eval, run_task};
 
 /// Runs one parsed command line; prints an error once, with its causes, and returns the exit
 /// code.
@@ -105,6 +105,28 @@ pub fn run(cli: Cli) -> ExitCode {
                 attempts,
                 stb: !no_stb,
             },
+        ),
+        Command::RobotEval {
+            task,
+            scenes,
+            policy,
+            out,
+            seed,
+            attempts,
+            no_frames,
+        } => run_robot_eval(
+            cli.json,
+            &task,
+            &out,
+            TaskRun {
+                scenes,
+                seed,
+                generate: true,
+                attempts,
+                stb: false,
+            },
+            policy.into_iter().map(Into::into).collect(),
+            !no_frames,
         ),
     };
     match result {

@@ -8,8 +8,11 @@ use anyhow::Context;
 
 use super::args::usage;
 use super::commands::print_json;
+use scenesmith::physics::pool::BridgePool;
+use scenesmith::physics::protocol::PolicyKind;
+use scenesmith::task::robot_eval::{RobotEvalOptions, robot_eval, table as robot_table};
 use scenesmith::task::scenes::{SceneBuildOptions, build_scenes};
-use scenesmith::task::{analyse, prompts};
+use scenesmith::task::{Predicate, ScenePrompt, TaskSpec, analyse, prompts};
 use scenesmith::util::fsx::write_atomic;
 
 /// Options of [`run_task`] besides the task and the directory.
@@ -36,20 +39,13 @@ pub(crate) fn run_task(
     out: &Path,
     run: TaskRun,
 ) -> anyhow::Result<ExitCode> {
-    let spec = analyse(task).map_err(usage)?;
-    if run.scenes == 0 {
-        return Err(usage("--scenes must be at least 1"));
-    }
-    let prompts = prompts(&spec, run.scenes, run.seed);
-    write_atomic(&out.join("task.json"), &serde_json::to_vec_pretty(&spec)?)
-        .context("writing task.json")?;
-    write_atomic(&out.join("prompts.jsonl"), &json_lines(&prompts)?)
-        .context("writing prompts.jsonl")?;
+    let (spec, prompts) = task_files(task, out, &run)?;
     eprintln!(
         "task: {} the {} {} the {}{}; rooms: {}",
-        match spec.predicate {
-            scenesmith::task::Predicate::Near => "move",
-            _ => "put",
+        if spec.predicate == Predicate::Near {
+            "move"
+        } else {
+            "put"
         },
         spec.target,
         spec.predicate.word(),
@@ -104,5 +100,83 @@ pub(crate) fn run_task(
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE
+    })
+}
+
+/// Reads the task, writes task.json and prompts.jsonl; the spec and the prompts.
+fn task_files(
+    task: &str,
+    out: &Path,
+    run: &TaskRun,
+) -> anyhow::Result<(TaskSpec, Vec<ScenePrompt>)> {
+    let spec = analyse(task).map_err(usage)?;
+    if run.scenes == 0 {
+        return Err(usage("--scenes must be at least 1"));
+    }
+    let prompts = prompts(&spec, run.scenes, run.seed);
+    write_atomic(&out.join("task.json"), &serde_json::to_vec_pretty(&spec)?)
+        .context("writing task.json")?;
+    write_atomic(&out.join("prompts.jsonl"), &json_lines(&prompts)?)
+        .context("writing prompts.jsonl")?;
+    Ok((spec, prompts))
+}
+
+pub(crate) fn run_robot_eval(
+    cli_json: bool,
+    task: &str,
+    out: &Path,
+    run: TaskRun,
+    policies: Vec<PolicyKind>,
+    frames: bool,
+) -> anyhow::Result<ExitCode> {
+    if policies.is_empty() {
+        return Err(usage("--policy names no policy"));
+    }
+    let (spec, prompts) = task_files(task, out, &run)?;
+    eprintln!(
+        "robot-eval: {} the {} {} the {}; {} scenes x {} policies",
+        if spec.predicate == Predicate::Near {
+            "move"
+        } else {
+            "put"
+        },
+        spec.target,
+        spec.predicate.word(),
+        spec.reference,
+        prompts.len(),
+        policies.len()
+    );
+    let pool = BridgePool::from_env();
+    let opts = RobotEvalOptions {
+        policies,
+        scenes: SceneBuildOptions {
+            attempts: run.attempts,
+            stb: run.stb,
+            render: false,
+        },
+        frames,
+        seed: run.seed,
+    };
+    let results = robot_eval(&spec, &prompts, out, &pool, &opts, &mut |line| {
+        eprintln!("  {line}");
+    });
+    write_atomic(&out.join("scenes.jsonl"), &json_lines(&results.scenes)?)
+        .context("writing scenes.jsonl")?;
+    write_atomic(
+        &out.join("results.json"),
+        &serde_json::to_vec_pretty(&results)?,
+    )
+    .context("writing results.json")?;
+    if cli_json {
+        print_json(&serde_json::to_value(&results)?)?;
+    } else {
+        eprintln!();
+        eprint!("{}", robot_table(&results));
+        eprintln!("wrote {}/results.json", out.display());
+    }
+    Ok(if results.episodes.is_empty() {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
     })
 }

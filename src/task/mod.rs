@@ -15,6 +15,7 @@
 
 mod analyse;
 mod check;
+pub mod robot_eval;
 pub mod scenes;
 mod variation;
 

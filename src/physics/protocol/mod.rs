@@ -13,6 +13,7 @@
 
 mod assets;
 mod conformance;
+mod robot;
 mod scene;
 mod sim;
 
@@ -26,6 +27,7 @@ use serde_json::{Value, json};
 
 pub use assets::*;
 pub use conformance::*;
+pub use robot::*;
 pub use scene::*;
 pub use sim::*;
 
@@ -128,6 +130,8 @@ pub fn schema() -> Value {
     add::<AssetsPush>(&mut ops);
     add::<MujocoCheck>(&mut ops);
     add::<UsdCheck>(&mut ops);
+    add::<PolicyEpisode>(&mut ops);
+    add::<JudgeTask>(&mut ops);
     json!({
         "protocol": super::bridge::PROTOCOL,
         "generated_by": "scenesmith (src/physics/protocol); SCENESMITH_UPDATE_SCHEMA=1 cargo test --lib protocol rewrites this file",
@@ -169,7 +173,7 @@ mod tests {
     fn every_op_has_an_object_schema_for_args_and_reply() {
         let s = schema();
         let ops = s["ops"].as_object().expect("ops");
-        assert_eq!(ops.len(), 14);
+        assert_eq!(ops.len(), 16);
         for (name, op) in ops {
             for side in ["args", "reply"] {
                 assert_eq!(op[side]["type"], "object", "{name} {side}");
