@@ -3,6 +3,7 @@
 
 mod common;
 
+use common::mock_llm::{MockServer, Script, text as llm_text, tool_calls};
 use common::{scenesmith, text};
 use scenesmith::formats::scene_dir::read_scene;
 use scenesmith::physics::protocol::{JudgeArgs, JudgeTask, TaskPredicate};
@@ -197,4 +198,80 @@ fn robot_eval_binds_judges_and_runs_an_episode_per_policy() {
         let after = out.join("episodes/scene_000/standard/after_standard.dmd.yaml");
         assert!(after.exists(), "{}", after.display());
     }
+}
+
+#[test]
+fn an_llm_reads_a_task_the_grammar_cannot_and_its_words_are_grounded_the_same_way() {
+    // The grammar needs a relation phrase; the model reads one the grammar cannot.
+    let task = "Shelve the mug where the books are";
+    let root = tempfile::tempdir().unwrap();
+    let out = root.path().join("t");
+    let o = out.to_str().unwrap();
+    let builtin = scenesmith(&["task", task, "--out", o], &[]);
+    assert_eq!(builtin.status.code(), Some(2), "{}", text(&builtin));
+    let mut script = Script::default();
+    // First a reply without the tool (retried with the reason), then the reading.
+    script.push("task", "analyst", llm_text("It goes on the shelf."));
+    script.push(
+        "task",
+        "analyst",
+        tool_calls(&[(
+            "submit_task",
+            r#"{"predicate": "on", "target": "mugs", "reference": "book shelf", "room": "office"}"#,
+        )]),
+    );
+    let server = MockServer::start(script);
+    let r = scenesmith(
+        &[
+            "task",
+            task,
+            "--out",
+            o,
+            "--scenes",
+            "2",
+            "--llm-base-url",
+            &server.base_url,
+            "--llm-model",
+            "mock-model",
+        ],
+        &[],
+    );
+    assert!(r.status.success(), "{}", text(&r));
+    let spec: TaskSpec =
+        serde_json::from_slice(&std::fs::read(out.join("task.json")).unwrap()).unwrap();
+    assert_eq!(
+        (spec.target.as_str(), spec.reference.as_str()),
+        ("mug", "bookshelf")
+    );
+    assert_eq!(spec.room_types, ["office"]);
+    let received = server.script.lock().unwrap().received.len();
+    assert_eq!(received, 2, "one retry after the reply without the tool");
+    // A model that names no object is refused like the grammar's reading.
+    let mut script = Script::default();
+    for _ in 0..2 {
+        script.push(
+            "task",
+            "analyst",
+            tool_calls(&[(
+                "submit_task",
+                r#"{"predicate": "on", "target": "happiness", "reference": "shelf"}"#,
+            )]),
+        );
+    }
+    let server = MockServer::start(script);
+    let r = scenesmith(
+        &[
+            "task",
+            task,
+            "--out",
+            o,
+            "--llm-base-url",
+            &server.base_url,
+            "--llm-model",
+            "m",
+        ],
+        &[],
+    );
+    assert_eq!(r.status.code(), Some(2), "{}", text(&r));
+    assert!(text(&r).contains("names no object"), "{}", text(&r));
 }

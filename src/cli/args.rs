@@ -200,6 +200,8 @@ pub(crate) enum Command {
         /// Skip the stability simulations of each scene's metrics.json.
         #[arg(long)]
         no_stb: bool,
+        #[command(flatten)]
+        llm: LlmArgs,
     },
     /// Evaluate robot policies on a task: the task's scenes (as `task --generate`), each bound
     /// to one object and reference with the goal judged false at the start, one episode per
@@ -232,6 +234,8 @@ pub(crate) enum Command {
         /// Skip the rendered frames and flipbook of each episode.
         #[arg(long)]
         no_frames: bool,
+        #[command(flatten)]
+        llm: LlmArgs,
     },
     /// Lay out the rooms of a prompt (no furniture, no files): print the floor plan and the
     /// validation (with --json: every room, door, window and the checks).

@@ -94,18 +94,22 @@ pub fn run(cli: Cli) -> ExitCode {
             generate,
             attempts,
             no_stb,
-        } => run_task(
-            cli.json,
-            &task,
-            &out,
-            TaskRun {
-                scenes,
-                seed,
-                generate,
-                attempts,
-                stb: !no_stb,
-            },
-        ),
+            llm,
+        } => llm.choice().and_then(|backend| {
+            run_task(
+                cli.json,
+                &task,
+                &out,
+                TaskRun {
+                    scenes,
+                    seed,
+                    generate,
+                    attempts,
+                    stb: !no_stb,
+                    backend,
+                },
+            )
+        }),
         Command::RobotEval {
             task,
             scenes,
@@ -114,20 +118,24 @@ pub fn run(cli: Cli) -> ExitCode {
             seed,
             attempts,
             no_frames,
-        } => run_robot_eval(
-            cli.json,
-            &task,
-            &out,
-            TaskRun {
-                scenes,
-                seed,
-                generate: true,
-                attempts,
-                stb: false,
-            },
-            policy.into_iter().map(Into::into).collect(),
-            !no_frames,
-        ),
+            llm,
+        } => llm.choice().and_then(|backend| {
+            run_robot_eval(
+                cli.json,
+                &task,
+                &out,
+                TaskRun {
+                    scenes,
+                    seed,
+                    generate: true,
+                    attempts,
+                    stb: false,
+                    backend,
+                },
+                policy.into_iter().map(Into::into).collect(),
+                !no_frames,
+            )
+        }),
     };
     match result {
         Ok(code) => code,

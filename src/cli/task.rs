@@ -8,11 +8,15 @@ use anyhow::Context;
 
 use super::args::usage;
 use super::commands::print_json;
+use scenesmith::agents::llm::LlmConfig;
+use scenesmith::agents::llm::transport::{HttpTransport, ReplayTransport};
 use scenesmith::physics::pool::BridgePool;
 use scenesmith::physics::protocol::PolicyKind;
+use scenesmith::pipeline::BackendChoice;
+use scenesmith::task::llm::analyse_with_llm;
 use scenesmith::task::robot_eval::{RobotEvalOptions, robot_eval, table as robot_table};
 use scenesmith::task::scenes::{SceneBuildOptions, build_scenes};
-use scenesmith::task::{Predicate, ScenePrompt, TaskSpec, analyse, prompts};
+use scenesmith::task::{Predicate, ScenePrompt, TaskError, TaskSpec, analyse, prompts};
 use scenesmith::util::fsx::write_atomic;
 
 /// Options of [`run_task`] besides the task and the directory.
@@ -22,6 +26,28 @@ pub(crate) struct TaskRun {
     pub(crate) generate: bool,
     pub(crate) attempts: u32,
     pub(crate) stb: bool,
+    /// Who reads the task and runs the scenes' stages.
+    pub(crate) backend: BackendChoice,
+}
+
+/// Reads the task with the chosen backend.
+fn read_task(task: &str, backend: &BackendChoice) -> anyhow::Result<TaskSpec> {
+    let spec = match backend {
+        BackendChoice::Builtin => analyse(task),
+        BackendChoice::Llm(config) => {
+            let mut t = HttpTransport::new(config.clone(), None)?;
+            analyse_with_llm(&mut t, &config.model, task)
+        }
+        BackendChoice::Replay(path) => {
+            let mut t = ReplayTransport::open(path, LlmConfig::default())?;
+            let model = t.recorded_model().unwrap_or_default();
+            analyse_with_llm(&mut t, &model, task)
+        }
+    };
+    spec.map_err(|e| match e {
+        TaskError::Llm(_) => anyhow::Error::new(e),
+        other => usage(other),
+    })
 }
 
 fn json_lines<T: serde::Serialize>(rows: &[T]) -> anyhow::Result<Vec<u8>> {
@@ -70,6 +96,7 @@ pub(crate) fn run_task(
         attempts: run.attempts,
         stb: run.stb,
         render: false,
+        backend: run.backend.clone(),
     };
     let total = prompts.len();
     let mut done = 0;
@@ -109,7 +136,7 @@ fn task_files(
     out: &Path,
     run: &TaskRun,
 ) -> anyhow::Result<(TaskSpec, Vec<ScenePrompt>)> {
-    let spec = analyse(task).map_err(usage)?;
+    let spec = read_task(task, &run.backend)?;
     if run.scenes == 0 {
         return Err(usage("--scenes must be at least 1"));
     }
@@ -153,6 +180,7 @@ pub(crate) fn run_robot_eval(
             attempts: run.attempts,
             stb: run.stb,
             render: false,
+            backend: run.backend.clone(),
         },
         frames,
         seed: run.seed,

@@ -108,9 +108,9 @@ fn phrase_end(tokens: &[String], at: usize) -> usize {
 }
 
 /// A phrase grounded: the reader's canonical noun and the phrase's other content words.
-struct Grounded {
-    noun: String,
-    words: Vec<String>,
+pub(super) struct Grounded {
+    pub(super) noun: String,
+    pub(super) words: Vec<String>,
 }
 
 /// Grounds a phrase through the prompt reader (lexicon, WordNet families); `None` when it
@@ -206,6 +206,29 @@ pub fn analyse(task: &str) -> Result<TaskSpec, TaskError> {
     let Some((predicate, reference)) = relation else {
         return Err(TaskError::NoRelation(task.trim().to_string()));
     };
+    build_spec(task, predicate, target, reference, start, room)
+}
+
+/// Grounds a free-text noun phrase ("red apple"), as the LLM reader hands them in.
+pub(super) fn ground_text(text: &str) -> Option<Grounded> {
+    ground(&split(text))
+}
+
+/// The room type a free-text phrase names, if any.
+pub(super) fn room_of_text(text: &str) -> Option<String> {
+    room_named(&split(text))
+}
+
+/// The spec of a read task: rooms, required objects, the initial-state constraint and what
+/// may vary.
+pub(super) fn build_spec(
+    task: &str,
+    predicate: Predicate,
+    target: Grounded,
+    reference: String,
+    start: Option<String>,
+    room: Option<String>,
+) -> Result<TaskSpec, TaskError> {
     if reference == target.noun {
         return Err(TaskError::SameObject(reference));
     }

@@ -15,6 +15,7 @@
 
 mod analyse;
 mod check;
+pub mod llm;
 pub mod robot_eval;
 pub mod scenes;
 mod variation;
@@ -114,6 +115,9 @@ pub enum TaskError {
     /// The object and the reference are the same noun.
     #[error("the task moves a {0} relative to a {0}; name two different objects")]
     SameObject(String),
+    /// The language model could not be reached or gave no usable reading.
+    #[error("reading the task with the LLM: {0}")]
+    Llm(String),
 }
 
 #[cfg(test)]

@@ -49,6 +49,8 @@ pub struct SceneBuildOptions {
     pub stb: bool,
     /// Write the annotated views.
     pub render: bool,
+    /// Who runs the scenes' stages.
+    pub backend: crate::pipeline::BackendChoice,
 }
 
 /// Generates (or finds on disk) the scene of each prompt under `out/scenes/<id>`, checks it
@@ -102,6 +104,7 @@ fn attempt_all(
         gen_opts.render = opts.render;
         gen_opts.exports = crate::export::ExportSet::none();
         gen_opts.stb = opts.stb;
+        gen_opts.backend = opts.backend.clone();
         let result = pipeline::generate(&gen_opts)
             .map_err(|e| e.to_string())
             .and_then(|_| read_scene(dir).map_err(|e| e.to_string()));
