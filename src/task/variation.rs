@@ -127,12 +127,15 @@ pub fn prompts(spec: &TaskSpec, n: usize, seed: u64) -> Vec<ScenePrompt> {
             };
             let extras: Vec<String> = match room {
                 Some(r) => {
-                    let pool: Vec<&str> = r
+                    let mut pool: Vec<&str> = r
                         .furniture
                         .iter()
                         .map(|i| i.noun.as_str())
                         .filter(|n| !used.iter().any(|u| u == n))
                         .collect();
+                    // Distinct nouns, so the draw below always ends.
+                    pool.sort_unstable();
+                    pool.dedup();
                     let [lo, hi] = w.extra_furniture;
                     let k = rng.random_range(lo..=hi.max(lo)).min(pool.len());
                     let mut chosen: Vec<&str> = Vec::new();
