@@ -8,6 +8,16 @@ step() { echo "== $* ($(date +%H:%M:%S))" >&2; }
 
 step "python environment"
 scripts/setup.sh
+step "viewer: chromium and the page bundle"
+if ! command -v chromium >/dev/null 2>&1 && [ -z "${SCENESMITH_CHROMIUM:-}" ]; then
+  # Debian's chromium for the viewer's headless-browser test (tests/viewer.rs).
+  if [ "$(id -u)" = 0 ]; then
+    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null
+  else
+    sudo apt-get update -qq && sudo DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null
+  fi
+fi
+scripts/build_viewer.sh
 step "cargo fmt --check"
 cargo fmt --all -- --check
 step "cargo clippy -D warnings"

@@ -26,6 +26,7 @@
 
 pub mod agents;
 pub mod assets;
+pub mod batch;
 pub mod eval;
 pub mod export;
 pub mod formats;
@@ -42,4 +43,5 @@ pub mod stages;
 pub mod state;
 pub mod task;
 pub mod util;
+pub mod view;
 pub mod words;

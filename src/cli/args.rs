@@ -237,6 +237,50 @@ pub(crate) enum Command {
         #[command(flatten)]
         llm: LlmArgs,
     },
+    /// Generate many scenes from a JSON-lines file, one scene per line ({"id", "prompt",
+    /// "seed"}; id and seed optional) into DIR/<id>/, with DIR/results/<id>.json per scene and
+    /// DIR/summary.jsonl. Resumable: finished scenes are skipped; a failed scene is tried once
+    /// more (from its checkpoints) and reported.
+    Batch {
+        /// The prompts file.
+        prompts: PathBuf,
+        /// Output directory.
+        #[arg(long)]
+        out: PathBuf,
+        /// Scenes generated at once.
+        #[arg(long, default_value_t = 1)]
+        workers: usize,
+        /// Run only these scene ids (comma-separated); the summary still lists every line.
+        #[arg(long, value_delimiter = ',')]
+        only: Option<Vec<String>>,
+        /// Write summary.jsonl and print the table from the results on disk; generate nothing.
+        #[arg(long, conflicts_with = "only")]
+        summary_only: bool,
+        /// Skip loading each result in Drake before writing it.
+        #[arg(long)]
+        no_check: bool,
+        /// Skip the annotated views of each scene.
+        #[arg(long)]
+        no_render: bool,
+        /// Skip the stability simulations of metrics.json (STB is then blank).
+        #[arg(long)]
+        no_stb: bool,
+        #[command(flatten)]
+        llm: LlmArgs,
+        /// Exports per scene: a comma-separated list of mjcf, usd, glb, or all / none.
+        #[arg(long, default_value = "all", value_parser = parse_exports)]
+        export: ExportSet,
+    },
+    /// Show a scene in the browser: serves a page with the scene's export/scene.glb (orbit
+    /// controls, object picking, hide/show by kind, focus per room, metrics) on localhost until
+    /// interrupted. Nothing is fetched from the internet.
+    View {
+        /// Scene directory.
+        dir: PathBuf,
+        /// Port on 127.0.0.1 (0 picks a free one).
+        #[arg(long, default_value_t = 8765)]
+        port: u16,
+    },
     /// Lay out the rooms of a prompt (no furniture, no files): print the floor plan and the
     /// validation (with --json: every room, door, window and the checks).
     Layout {

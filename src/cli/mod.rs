@@ -3,12 +3,14 @@
 //! error to the exit code in one place (2 for a [`args::UsageError`], 1 for anything else).
 
 pub mod args;
+pub mod batch;
 pub mod commands;
 pub mod task;
 
 use std::process::ExitCode;
 
 use args::{Cli, Command, UsageError};
+use batch::{BatchRun, run_batch_command, run_view};
 use commands::*;
 use scenesmith::pipeline::GenerateOptions;
 use task::{TaskRun, run_robot_eval, run_task};
@@ -136,6 +138,37 @@ pub fn run(cli: Cli) -> ExitCode {
                 !no_frames,
             )
         }),
+        Command::Batch {
+            prompts,
+            out,
+            workers,
+            only,
+            summary_only,
+            no_check,
+            no_render,
+            no_stb,
+            llm,
+            export,
+        } => llm.choice().and_then(|backend| {
+            let mut generate = GenerateOptions::new(String::new(), &out);
+            generate.drake_check = !no_check;
+            generate.render = !no_render;
+            generate.stb = !no_stb;
+            generate.exports = export;
+            generate.backend = backend;
+            run_batch_command(
+                cli.json,
+                BatchRun {
+                    prompts,
+                    out,
+                    workers,
+                    only,
+                    summary_only,
+                    generate,
+                },
+            )
+        }),
+        Command::View { dir, port } => run_view(&dir, port),
     };
     match result {
         Ok(code) => code,
