@@ -462,6 +462,16 @@ pub fn table(report: &BatchReport) -> String {
             r.attempts
         );
     }
+    if report.workers == 0 {
+        // A summary of the results on disk: no run to describe.
+        s += &format!(
+            "{} ok, {} failed, {} pending (results on disk)\n",
+            report.count(Status::Ok),
+            report.count(Status::Failed),
+            report.count(Status::Pending)
+        );
+        return s + &failures(report);
+    }
     s += &format!(
         "{} ok, {} failed, {} pending; this run: {} generated, {} skipped (finished earlier), {:.0} s wall, {} worker(s)",
         report.count(Status::Ok),
@@ -476,14 +486,23 @@ pub fn table(report: &BatchReport) -> String {
         s += &format!(", {rate:.1} scenes/hour");
     }
     s.push('\n');
-    for r in report.scenes.iter().filter(|r| r.status == Status::Failed) {
-        s += &format!(
-            "  {} failed: {}\n",
-            r.id,
-            r.error.as_deref().unwrap_or("no reason recorded")
-        );
-    }
-    s
+    s + &failures(report)
+}
+
+/// One line per failed scene with its reason.
+fn failures(report: &BatchReport) -> String {
+    report
+        .scenes
+        .iter()
+        .filter(|r| r.status == Status::Failed)
+        .map(|r| {
+            format!(
+                "  {} failed: {}\n",
+                r.id,
+                r.error.as_deref().unwrap_or("no reason recorded")
+            )
+        })
+        .collect()
 }
 
 #[cfg(test)]
