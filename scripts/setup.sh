@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Creates .venv/ with the pinned Python side of scenesmith (pydrake, numpy, mujoco, usd-core,
-# pytest) and verifies the imports. Idempotent: a second run only re-verifies (about a second).
+# pytest, ray, maturin) and verifies the imports, then installs the Python package `scenesmith`
+# (scripts/build_python.sh --if-missing). Idempotent: a second run only re-verifies (about a second).
 #
 # Interpreter: CPython 3.12 (pyenv's 3.12.*, or python3.12 on PATH) with drake 1.58.0; where
 # no 3.12 exists, CPython 3.11 with drake 1.51.1, the newest wheel for 3.11.
@@ -62,8 +63,12 @@ PY
 if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$stamp_want" ] && [ -x "$venv/bin/python" ]; then
   # The wrappers call this before every command: trust the stamp there (the bridge reports a
   # missing module itself); an explicit run re-verifies the imports.
-  [ "$quiet" = 1 ] && exit 0
+  if [ "$quiet" = 1 ]; then
+    "$root/scripts/build_python.sh" --quiet --if-missing
+    exit 0
+  fi
   if out="$(verify 2>&1)"; then
+    "$root/scripts/build_python.sh" --if-missing $([ "$quiet" = 1 ] && echo --quiet)
     say "ready ($out)"
     exit 0
   fi
@@ -78,3 +83,4 @@ rm -rf "$venv"
 out="$(verify)"
 echo "$stamp_want" > "$stamp"
 say "ready ($out)"
+"$root/scripts/build_python.sh" --if-missing $([ "$quiet" = 1 ] && echo --quiet)

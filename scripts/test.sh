@@ -21,9 +21,11 @@ scripts/build_viewer.sh
 step "cargo fmt --check"
 cargo fmt --all -- --check
 step "cargo clippy -D warnings"
-cargo clippy --all-targets --quiet -- -D warnings
+cargo clippy --workspace --all-targets --quiet -- -D warnings
 step "cargo test"
 SCENESMITH_HOME="$root" cargo test --quiet
-step "pytest drake_bridge"
-.venv/bin/python -m pytest drake_bridge/tests -q
+step "python package scenesmith (pyo3 wheel)"
+scripts/build_python.sh
+step "pytest drake_bridge and the python package"
+.venv/bin/python -m pytest drake_bridge/tests src/python/tests -q
 step "all tests passed"
