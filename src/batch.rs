@@ -71,9 +71,9 @@ pub struct BatchItem {
     pub seed: u64,
 }
 
-/// The line as written: every field but `prompt` optional, nothing else allowed.
+/// The line as written: every field but `prompt` optional; other fields (a category, a note)
+/// are ignored, so files such as the evaluation prompt sets run as they are.
 #[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
 struct Line {
     id: Option<String>,
     prompt: String,
@@ -519,7 +519,7 @@ mod tests {
     #[test]
     fn lines_become_items_with_default_ids_and_seeds() {
         let (_d, path) = file(
-            "{\"id\": \"bed\", \"prompt\": \"a bedroom\", \"seed\": 7}\n\n{\"prompt\": \"a kitchen\"}\n",
+            "{\"id\": \"bed\", \"prompt\": \"a bedroom\", \"seed\": 7}\n\n{\"prompt\": \"a kitchen\", \"category\": \"x\"}\n",
         );
         let items = read_items(&path).expect("items");
         assert_eq!(items.len(), 2);
@@ -535,10 +535,7 @@ mod tests {
     fn bad_lines_are_named_by_number() {
         for (text, needle) in [
             ("{\"prompt\": \"a bedroom\"}\nnot json\n", ":2:"),
-            (
-                "{\"prompt\": \"a bedroom\", \"colour\": 1}\n",
-                "unknown field",
-            ),
+            ("{\"promt\": \"a bedroom\"}\n", "missing field `prompt`"),
             (
                 "{\"id\": \"../x\", \"prompt\": \"a bedroom\"}\n",
                 "directory name",
