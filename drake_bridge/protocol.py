@@ -707,6 +707,30 @@ class JudgeReply:
     thresholds: dict[str, float]
 
 
+@dataclass
+class EvalToolArgs:
+    scene_dir: str
+    directives: str
+    tool: Literal["list_objects", "get_object_info", "get_distance", "get_spatial_relation",
+                  "get_support", "observe_scene", "observe_objects"]
+    object_id: Optional[str] = None
+    other_id: Optional[str] = None
+    category: Optional[str] = None
+    object_ids: list[str] = field(default_factory=list)
+
+
+@dataclass
+class ToolImage:
+    name: str
+    png_base64: str
+
+
+@dataclass
+class EvalToolReply:
+    result_json: str
+    images: list[ToolImage]
+
+
 # --------------------------------------------------------------------------- the operations
 
 #: op name -> (argument type, reply type); the handlers are registered in drake_bridge.ops.
@@ -727,4 +751,5 @@ SIGNATURES = {
     "usd_check": (UsdCheckArgs, UsdCheckReply),
     "policy_episode": (EpisodeArgs, EpisodeReply),
     "judge_task": (JudgeArgs, JudgeReply),
+    "evaluator_tool": (EvalToolArgs, EvalToolReply),
 }

@@ -234,6 +234,15 @@ pub(crate) enum Command {
         /// Skip the rendered frames and flipbook of each episode.
         #[arg(long)]
         no_frames: bool,
+        /// Who judges the initial and final states: the built-in geometric evaluator, or also
+        /// a language model over the same tools (needs --llm-base-url and --llm-model; its
+        /// verdict then decides success, the built-in one is kept next to it).
+        #[arg(long, value_enum, default_value = "builtin")]
+        judge: JudgeArg,
+        /// Generate the scenes with the built-in backend even when an LLM is given (for the
+        /// task reading and --judge llm).
+        #[arg(long)]
+        builtin_scenes: bool,
         #[command(flatten)]
         llm: LlmArgs,
     },
@@ -313,6 +322,15 @@ pub(crate) fn usage(e: impl std::fmt::Display) -> anyhow::Error {
 pub(crate) enum PolicyArg {
     Standard,
     Degraded,
+}
+
+/// `--judge`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub(crate) enum JudgeArg {
+    /// The built-in geometric evaluator.
+    Builtin,
+    /// A language model over the evaluator's tools, next to the built-in evaluator.
+    Llm,
 }
 
 impl From<PolicyArg> for scenesmith::physics::protocol::PolicyKind {

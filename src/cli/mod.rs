@@ -9,11 +9,12 @@ pub mod task;
 
 use std::process::ExitCode;
 
-use args::{Cli, Command, UsageError};
+use args::{Cli, Command, JudgeArg, UsageError};
 use batch::{BatchRun, run_batch_command, run_view};
 use commands::*;
+use scenesmith::pipeline::BackendChoice;
 use scenesmith::pipeline::GenerateOptions;
-use task::{TaskRun, run_robot_eval, run_task};
+use task::{EvalJudge, TaskRun, run_robot_eval, run_task};
 
 /// Runs one parsed command line; prints an error once, with its causes, and returns the exit
 /// code.
@@ -108,6 +109,7 @@ pub fn run(cli: Cli) -> ExitCode {
                     generate,
                     attempts,
                     stb: !no_stb,
+                    scene_backend: backend.clone(),
                     backend,
                 },
             )
@@ -120,6 +122,8 @@ pub fn run(cli: Cli) -> ExitCode {
             seed,
             attempts,
             no_frames,
+            judge,
+            builtin_scenes,
             llm,
         } => llm.choice().and_then(|backend| {
             run_robot_eval(
@@ -132,10 +136,19 @@ pub fn run(cli: Cli) -> ExitCode {
                     generate: true,
                     attempts,
                     stb: false,
+                    scene_backend: if builtin_scenes {
+                        BackendChoice::Builtin
+                    } else {
+                        backend.clone()
+                    },
                     backend,
                 },
                 policy.into_iter().map(Into::into).collect(),
                 !no_frames,
+                match judge {
+                    JudgeArg::Builtin => EvalJudge::Builtin,
+                    JudgeArg::Llm => EvalJudge::Llm,
+                },
             )
         }),
         Command::Batch {

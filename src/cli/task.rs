@@ -9,12 +9,12 @@ use anyhow::Context;
 use super::args::usage;
 use super::commands::print_json;
 use scenesmith::agents::llm::LlmConfig;
-use scenesmith::agents::llm::transport::{HttpTransport, ReplayTransport};
+use scenesmith::agents::llm::transport::{HttpTransport, ReplayTransport, Transport};
 use scenesmith::physics::pool::BridgePool;
 use scenesmith::physics::protocol::PolicyKind;
 use scenesmith::pipeline::BackendChoice;
 use scenesmith::task::llm::analyse_with_llm;
-use scenesmith::task::robot_eval::{RobotEvalOptions, robot_eval, table as robot_table};
+use scenesmith::task::robot_eval::{LlmJudge, RobotEvalOptions, robot_eval, table as robot_table};
 use scenesmith::task::scenes::{SceneBuildOptions, build_scenes};
 use scenesmith::task::{Predicate, ScenePrompt, TaskError, TaskSpec, analyse, prompts};
 use scenesmith::util::fsx::write_atomic;
@@ -26,23 +26,42 @@ pub(crate) struct TaskRun {
     pub(crate) generate: bool,
     pub(crate) attempts: u32,
     pub(crate) stb: bool,
-    /// Who reads the task and runs the scenes' stages.
+    /// Who reads the task (and judges states with `--judge llm`).
     pub(crate) backend: BackendChoice,
+    /// Who runs the scenes' stages.
+    pub(crate) scene_backend: BackendChoice,
+}
+
+/// Who judges the states of `robot-eval`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum EvalJudge {
+    /// The built-in geometric evaluator only.
+    Builtin,
+    /// A language model over the evaluator's tools, next to the built-in evaluator.
+    Llm,
+}
+
+/// The model endpoint of an LLM backend and the model name, or None for the built-in one.
+fn transport_of(backend: &BackendChoice) -> anyhow::Result<Option<(Box<dyn Transport>, String)>> {
+    Ok(match backend {
+        BackendChoice::Builtin => None,
+        BackendChoice::Llm(config) => Some((
+            Box::new(HttpTransport::new(config.clone(), None)?),
+            config.model.clone(),
+        )),
+        BackendChoice::Replay(path) => {
+            let t = ReplayTransport::open(path, LlmConfig::default())?;
+            let model = t.recorded_model().unwrap_or_default();
+            Some((Box::new(t), model))
+        }
+    })
 }
 
 /// Reads the task with the chosen backend.
 fn read_task(task: &str, backend: &BackendChoice) -> anyhow::Result<TaskSpec> {
-    let spec = match backend {
-        BackendChoice::Builtin => analyse(task),
-        BackendChoice::Llm(config) => {
-            let mut t = HttpTransport::new(config.clone(), None)?;
-            analyse_with_llm(&mut t, &config.model, task)
-        }
-        BackendChoice::Replay(path) => {
-            let mut t = ReplayTransport::open(path, LlmConfig::default())?;
-            let model = t.recorded_model().unwrap_or_default();
-            analyse_with_llm(&mut t, &model, task)
-        }
+    let spec = match transport_of(backend)? {
+        None => analyse(task),
+        Some((mut t, model)) => analyse_with_llm(t.as_mut(), &model, task),
     };
     spec.map_err(|e| match e {
         TaskError::Llm(_) => anyhow::Error::new(e),
@@ -96,7 +115,7 @@ pub(crate) fn run_task(
         attempts: run.attempts,
         stb: run.stb,
         render: false,
-        backend: run.backend.clone(),
+        backend: run.scene_backend.clone(),
     };
     let total = prompts.len();
     let mut done = 0;
@@ -155,10 +174,17 @@ pub(crate) fn run_robot_eval(
     run: TaskRun,
     policies: Vec<PolicyKind>,
     frames: bool,
+    judge: EvalJudge,
 ) -> anyhow::Result<ExitCode> {
     if policies.is_empty() {
         return Err(usage("--policy names no policy"));
     }
+    let mut judge_transport = match judge {
+        EvalJudge::Builtin => None,
+        EvalJudge::Llm => Some(transport_of(&run.backend)?.ok_or_else(|| {
+            usage("--judge llm needs a model: --llm-base-url URL --llm-model M (or --llm-config, --replay)")
+        })?),
+    };
     let (spec, prompts) = task_files(task, out, &run)?;
     eprintln!(
         "robot-eval: {} the {} {} the {}; {} scenes x {} policies",
@@ -180,12 +206,16 @@ pub(crate) fn run_robot_eval(
             attempts: run.attempts,
             stb: run.stb,
             render: false,
-            backend: run.backend.clone(),
+            backend: run.scene_backend.clone(),
         },
         frames,
         seed: run.seed,
     };
-    let results = robot_eval(&spec, &prompts, out, &pool, &opts, &mut |line| {
+    let llm = judge_transport.as_mut().map(|(t, model)| LlmJudge {
+        transport: t.as_mut(),
+        model: model.clone(),
+    });
+    let results = robot_eval(&spec, &prompts, out, &pool, &opts, llm, &mut |line| {
         eprintln!("  {line}");
     });
     write_atomic(&out.join("scenes.jsonl"), &json_lines(&results.scenes)?)

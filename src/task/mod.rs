@@ -16,6 +16,7 @@
 mod analyse;
 mod check;
 pub mod llm;
+pub mod llm_judge;
 pub mod robot_eval;
 pub mod scenes;
 mod variation;

@@ -9,13 +9,20 @@
 //! `after_<policy>.dmd.yaml`. An episode's outcome is `success`, `placed_wrong` (executed, the
 //! goal does not hold), or the policy's failure reason (`no_base_pose`, `no_grasp`, `ik`,
 //! `planning`, `dropped`, `timeout`); a bridge error is `error`.
+//!
+//! With an LLM evaluator ([`LlmJudge`], [`super::llm_judge`]) the model also judges the bound
+//! pair's initial state and every executed episode's final state over the same tools; its
+//! verdict then decides `success` / `placed_wrong`, and the built-in verdict is kept next to it
+//! (`builtin_holds`), so the two can be compared.
 
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use super::llm_judge::{JudgedState, LlmVerdict, judge_with_llm};
 use super::scenes::{SceneBuildOptions, TaskScene, build_scenes};
 use super::{Predicate, ScenePrompt, TaskSpec};
+use crate::agents::llm::transport::Transport;
 use crate::physics::pool::{BridgePool, Job};
 use crate::physics::protocol::{
     EpisodeArgs, EpisodeReply, JudgeArgs, JudgeReply, JudgeTask, PolicyEpisode, PolicyKind,
@@ -47,6 +54,9 @@ pub struct Binding {
     /// The evaluator's reason for the initial state of the bound pair (or why nothing was
     /// bound).
     pub initial: String,
+    /// The LLM evaluator's verdict on the initial state (with an LLM evaluator).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub llm_initial: Option<LlmVerdict>,
 }
 
 /// One episode.
@@ -70,6 +80,12 @@ pub struct EpisodeRow {
     pub max_gripper_speed: f64,
     /// The episode's directory.
     pub dir: PathBuf,
+    /// The built-in evaluator's verdict on the final state (executed episodes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub builtin_holds: Option<bool>,
+    /// The LLM evaluator's verdict on the final state (with an LLM evaluator).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub llm: Option<LlmVerdict>,
 }
 
 impl EpisodeRow {
@@ -107,6 +123,25 @@ pub struct RobotEvalResults {
     pub episodes: Vec<EpisodeRow>,
     /// Per policy.
     pub summary: Vec<PolicySummary>,
+}
+
+/// A language model judging states next to the built-in evaluator.
+pub struct LlmJudge<'a> {
+    /// Where requests go.
+    pub transport: &'a mut dyn Transport,
+    /// The model name sent.
+    pub model: String,
+}
+
+impl LlmJudge<'_> {
+    fn judge(
+        &mut self,
+        pool: &BridgePool,
+        spec: &TaskSpec,
+        state: JudgedState<'_>,
+    ) -> Result<LlmVerdict, String> {
+        judge_with_llm(self.transport, &self.model, pool, spec, state).map_err(|e| e.to_string())
+    }
 }
 
 /// The 95 % Wilson score interval of `k` successes in `n` trials.
@@ -156,6 +191,7 @@ fn bind(pool: &BridgePool, spec: &TaskSpec, scene: &TaskScene) -> Binding {
         target: None,
         reference: None,
         initial: why,
+        llm_initial: None,
     };
     let Some(target) = scene.check.bindable.first() else {
         return none("no object to move".into());
@@ -177,6 +213,7 @@ fn bind(pool: &BridgePool, spec: &TaskSpec, scene: &TaskScene) -> Binding {
             target: Some(p.target.clone()),
             reference: Some(p.reference.clone()),
             initial: p.reason.clone(),
+            llm_initial: None,
         },
         None => none(format!(
             "the goal already holds for {target} with every reference"
@@ -192,6 +229,7 @@ pub fn robot_eval(
     out: &Path,
     pool: &BridgePool,
     opts: &RobotEvalOptions,
+    mut llm: Option<LlmJudge<'_>>,
     progress: &mut dyn FnMut(String),
 ) -> RobotEvalResults {
     let scenes = build_scenes(spec, prompts, out, &opts.scenes, &mut |row| {
@@ -200,11 +238,31 @@ pub fn robot_eval(
             Some(why) => format!("scene {}: unusable: {why}", row.id),
         });
     });
-    let bindings: Vec<Binding> = scenes
+    let mut bindings: Vec<Binding> = scenes
         .iter()
         .filter(|s| s.passed())
         .map(|s| bind(pool, spec, s))
         .collect();
+    if let Some(judge) = llm.as_mut() {
+        for b in &mut bindings {
+            let (Some(t), Some(r)) = (&b.target, &b.reference) else {
+                continue;
+            };
+            let Some(scene) = scenes.iter().find(|s| s.id == b.scene) else {
+                continue;
+            };
+            let state = JudgedState {
+                scene_dir: &scene.dir,
+                directives: Path::new("scene.dmd.yaml"),
+                target: t,
+                reference: r,
+            };
+            match judge.judge(pool, spec, state) {
+                Ok(v) => b.llm_initial = Some(v),
+                Err(e) => progress(format!("scene {}: the LLM evaluator failed: {e}", b.scene)),
+            }
+        }
+    }
     // Every (scene, policy) episode, in parallel over the pool.
     let mut planned = Vec::new();
     for b in &bindings {
@@ -244,7 +302,7 @@ pub fn robot_eval(
                 .map_err(|e| e.to_string())
                 .and_then(|v| serde_json::from_value::<EpisodeReply>(v).map_err(|e| e.to_string()))
         });
-        let row = episode_row(pool, spec, scene, args, decoded);
+        let row = episode_row(pool, spec, scene, args, decoded, llm.as_mut());
         progress(format!(
             "scene {} {}: {} ({})",
             row.scene, row.policy, row.outcome, row.reason
@@ -285,6 +343,7 @@ fn episode_row(
     scene: &TaskScene,
     args: &EpisodeArgs,
     reply: Result<EpisodeReply, String>,
+    llm: Option<&mut LlmJudge<'_>>,
 ) -> EpisodeRow {
     let mut row = EpisodeRow {
         scene: scene.id.clone(),
@@ -296,6 +355,8 @@ fn episode_row(
         seconds: 0.0,
         max_gripper_speed: 0.0,
         dir: args.out_dir.clone(),
+        builtin_holds: None,
+        llm: None,
     };
     let r = match reply {
         Ok(r) => r,
@@ -327,12 +388,46 @@ fn episode_row(
             Some(p) => {
                 row.outcome = if p.holds { "success" } else { "placed_wrong" }.into();
                 row.reason = p.reason.clone();
+                row.builtin_holds = Some(p.holds);
             }
             None => row.reason = "the evaluator judged no pair".into(),
         },
         Err(e) => row.reason = format!("the evaluator failed: {e}"),
     }
+    if let Some(judge) = llm {
+        let state = JudgedState {
+            scene_dir: &scene.dir,
+            directives: &after,
+            target: &args.target,
+            reference: &args.reference,
+        };
+        match judge.judge(pool, spec, state) {
+            Ok(v) => {
+                row.outcome = if v.holds { "success" } else { "placed_wrong" }.into();
+                row.reason = format!("LLM evaluator: {}", v.reason);
+                row.llm = Some(v);
+            }
+            Err(e) => {
+                row.outcome = "error".into();
+                row.reason = format!("the LLM evaluator failed: {e}");
+            }
+        }
+    }
     row
+}
+
+/// States both evaluators judged, and on how many they agree (with an LLM evaluator).
+pub fn agreement(results: &RobotEvalResults) -> Option<(usize, usize)> {
+    let initial = results.bindings.iter().filter_map(|b| {
+        // The binding needs the built-in evaluator to call the initial state false.
+        b.llm_initial.as_ref().map(|v| !v.holds)
+    });
+    let finals = results
+        .episodes
+        .iter()
+        .filter_map(|e| Some(e.llm.as_ref()?.holds == e.builtin_holds?));
+    let agree: Vec<bool> = initial.chain(finals).collect();
+    (!agree.is_empty()).then(|| (agree.iter().filter(|a| **a).count(), agree.len()))
 }
 
 /// The table of success rates, Markdown.
@@ -348,6 +443,11 @@ pub fn table(results: &RobotEvalResults) -> String {
             100.0 * s.rate,
             100.0 * s.ci95[0],
             100.0 * s.ci95[1]
+        ));
+    }
+    if let Some((k, n)) = agreement(results) {
+        out.push_str(&format!(
+            "\nThe LLM evaluator agrees with the built-in one on {k} of {n} judged states.\n"
         ));
     }
     out

@@ -132,6 +132,7 @@ pub fn schema() -> Value {
     add::<UsdCheck>(&mut ops);
     add::<PolicyEpisode>(&mut ops);
     add::<JudgeTask>(&mut ops);
+    add::<EvaluatorTool>(&mut ops);
     json!({
         "protocol": super::bridge::PROTOCOL,
         "generated_by": "scenesmith (src/physics/protocol); SCENESMITH_UPDATE_SCHEMA=1 cargo test --lib protocol rewrites this file",
@@ -173,7 +174,7 @@ mod tests {
     fn every_op_has_an_object_schema_for_args_and_reply() {
         let s = schema();
         let ops = s["ops"].as_object().expect("ops");
-        assert_eq!(ops.len(), 16);
+        assert_eq!(ops.len(), 17);
         for (name, op) in ops {
             for side in ["args", "reply"] {
                 assert_eq!(op[side]["type"], "object", "{name} {side}");

@@ -18,6 +18,11 @@ op!(
     /// Judges a predicate between bound objects on a scene's directives (or an after-file).
     JudgeTask, "judge_task", JudgeArgs, JudgeReply
 );
+op!(
+    /// Runs one of the evaluator's state or vision tools on a scene's directives (what an LLM
+    /// evaluator calls).
+    EvaluatorTool, "evaluator_tool", EvalToolArgs, EvalToolReply
+);
 
 /// The relation a task asks for, as the bridge spells it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
@@ -134,4 +139,69 @@ pub struct JudgeReply {
     pub pairs: Vec<PairVerdict>,
     /// The thresholds the verdicts used.
     pub thresholds: BTreeMap<String, f64>,
+}
+
+/// The evaluator's tools, as an LLM evaluator calls them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum EvalTool {
+    /// Objects of the scene (optionally of one category): id, category, kind, free or welded.
+    ListObjects,
+    /// One object: category, pose, size, its support.
+    GetObjectInfo,
+    /// Signed distance between two objects (Drake, metres; negative when penetrating).
+    GetDistance,
+    /// Where `other_id` is relative to `object_id`: gaps per axis in the reference's frame,
+    /// overlap, above / below / inside.
+    GetSpatialRelation,
+    /// What holds an object up: contacts and the surface overlap percentage.
+    GetSupport,
+    /// Images of the whole scene.
+    ObserveScene,
+    /// Images framing `object_ids`.
+    ObserveObjects,
+}
+
+/// Arguments of `evaluator_tool`: the tool and the arguments it takes (the others absent).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct EvalToolArgs {
+    /// The scene directory.
+    pub scene_dir: PathBuf,
+    /// The directives observed (`scene.dmd.yaml` or an after-file), absolute or relative to
+    /// `scene_dir`.
+    pub directives: PathBuf,
+    /// The tool.
+    pub tool: EvalTool,
+    /// The object (get_object_info, get_support; the first of get_distance and
+    /// get_spatial_relation, the reference of the latter).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub object_id: Option<String>,
+    /// The second object (get_distance, get_spatial_relation).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub other_id: Option<String>,
+    /// A category filter (list_objects).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub category: Option<String>,
+    /// The objects to frame (observe_objects).
+    #[serde(default)]
+    pub object_ids: Vec<String>,
+}
+
+/// A rendered image.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct ToolImage {
+    /// What it shows ("top", "front", ...).
+    pub name: String,
+    /// The PNG, base64.
+    pub png_base64: String,
+}
+
+/// Reply to `evaluator_tool`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct EvalToolReply {
+    /// The tool's result as JSON text (an object; `{"error": ...}` for a bad argument such as
+    /// an unknown object id, which the caller shows the model rather than failing).
+    pub result_json: String,
+    /// Images (the vision tools).
+    pub images: Vec<ToolImage>,
 }
