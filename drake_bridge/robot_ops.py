@@ -1,19 +1,23 @@
-"""The robot operations: one pick-and-place episode (`policy_episode`, drake_bridge/policy/)
-and the built-in evaluator's verdicts on bound objects (`judge_task`, drake_bridge/evaluator/).
+"""The robot operations: one pick-and-place episode (`policy_episode`, drake_bridge/policy/),
+the built-in evaluator's verdicts on bound objects (`judge_task`, drake_bridge/evaluator/), and
+one tool call of the LLM evaluator (`evaluator_tool`, drake_bridge/evaluator/llm_tools.py).
 
 Both are thin: they translate the protocol dataclasses to the packages' own types and back.
 An input the policy cannot run at all (an unknown instance, a target that is not a free body)
 is a BadRequest; a policy that fails is a normal reply with its failure reason.
 """
 
+import base64
+import collections
+import json
 import math
 import os
 
 from drake_bridge.errors import BadRequest
-from drake_bridge.evaluator import THRESHOLDS, load_state
+from drake_bridge.evaluator import THRESHOLDS, load_state, run_tool
 from drake_bridge.evaluator.builtin import judge_inside, judge_near, judge_on
 from drake_bridge.policy import BadTask, PickPlaceTask, run_episode
-from drake_bridge.protocol import EpisodeReply, JudgeReply, PairVerdict
+from drake_bridge.protocol import EpisodeReply, EvalToolReply, JudgeReply, PairVerdict, ToolImage
 
 _JUDGES = {"on": judge_on, "inside": judge_inside, "near": judge_near}
 
@@ -53,12 +57,13 @@ def _numbers(evidence):
     return out
 
 
+def _directives_path(scene_dir, directives):
+    return directives if os.path.isabs(directives) else os.path.join(scene_dir, directives)
+
+
 def op_judge_task(args):
     """protocol.JudgeArgs -> JudgeReply: one verdict per (target, reference) pair."""
-    directives = args.directives
-    if not os.path.isabs(directives):
-        directives = os.path.join(args.scene_dir, directives)
-    state = load_state(args.scene_dir, dmd=directives)
+    state = load_state(args.scene_dir, dmd=_directives_path(args.scene_dir, args.directives))
     judge = _JUDGES[args.predicate]
     pairs = []
     for t in args.targets:
@@ -73,7 +78,45 @@ def op_judge_task(args):
     return JudgeReply(pairs=pairs, thresholds={k: float(v) for k, v in THRESHOLDS.items()})
 
 
+#: States the LLM evaluator's tools read, most recently used last: a conversation calls many
+#: tools on one state (and its renderer, built on the first vision call, stays with it).
+_TOOL_STATES = collections.OrderedDict()
+#: At most this many states are kept (a judged scene and a policy's after-state).
+TOOL_STATES_KEPT = 2
+
+
+def _tool_state(scene_dir, directives):
+    """load_state, cached by (scene dir, directives path, the file's mtime)."""
+    if not os.path.isdir(scene_dir):
+        raise BadRequest(f"scene directory not found: {scene_dir}")
+    path = os.path.abspath(_directives_path(scene_dir, directives))
+    try:
+        mtime = os.stat(path).st_mtime_ns
+    except OSError:
+        mtime = None  # load_state names the missing file
+    key = (os.path.abspath(scene_dir), path, mtime)
+    state = _TOOL_STATES.pop(key, None)
+    if state is None:
+        state = load_state(scene_dir, dmd=path)
+    _TOOL_STATES[key] = state
+    while len(_TOOL_STATES) > TOOL_STATES_KEPT:
+        _TOOL_STATES.popitem(last=False)
+    return state
+
+
+def op_evaluator_tool(args):
+    """protocol.EvalToolArgs -> EvalToolReply: one state or vision tool (llm_tools.run_tool);
+    a bad tool argument is a result {"error": ...} for the model to read."""
+    state = _tool_state(args.scene_dir, args.directives)
+    result, images = run_tool(state, args)
+    return EvalToolReply(
+        result_json=json.dumps(result, allow_nan=False),
+        images=[ToolImage(name=name, png_base64=base64.b64encode(png).decode("ascii"))
+                for name, png in images])
+
+
 OPS = {
     "policy_episode": op_policy_episode,
     "judge_task": op_judge_task,
+    "evaluator_tool": op_evaluator_tool,
 }

@@ -4,15 +4,7 @@
 
 mod common;
 
-use common::{scenesmith, text};
-
-fn lines(path: &std::path::Path) -> Vec<serde_json::Value> {
-    std::fs::read_to_string(path)
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-        .lines()
-        .map(|l| serde_json::from_str(l).expect("a JSON line"))
-        .collect()
-}
+use common::{json_lines, scenesmith, text};
 
 const FAST: [&str; 5] = ["--no-stb", "--no-render", "--export", "none", "--workers"];
 
@@ -38,7 +30,7 @@ fn a_batch_runs_resumes_and_reports_a_failed_scene() {
     let r = scenesmith(&args, &[]);
     // One scene failed: the batch says so with its exit status, after doing the others.
     assert_eq!(r.status.code(), Some(1), "{}", text(&r));
-    let summary = lines(&out.join("summary.jsonl"));
+    let summary = json_lines(&out.join("summary.jsonl"));
     let ids: Vec<&str> = summary.iter().filter_map(|s| s["id"].as_str()).collect();
     assert_eq!(ids, ["bath", "scene_001", "nonsense"], "file order");
     for s in &summary[..2] {

@@ -4,20 +4,12 @@
 mod common;
 
 use common::mock_llm::{MockServer, Script, text as llm_text, tool_calls};
-use common::{scenesmith, text};
+use common::{generate_quick, json_lines, scenesmith, text};
 use scenesmith::formats::scene_dir::read_scene;
 use scenesmith::physics::protocol::{JudgeArgs, JudgeTask, TaskPredicate};
 use scenesmith::physics::{Bridge, BridgeConfig};
 use scenesmith::scene::Support;
 use scenesmith::task::{TaskSpec, check_scene};
-
-fn lines(path: &std::path::Path) -> Vec<serde_json::Value> {
-    std::fs::read_to_string(path)
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-        .lines()
-        .map(|l| serde_json::from_str(l).expect("a JSON line"))
-        .collect()
-}
 
 #[test]
 fn a_task_gives_prompts_and_bad_tasks_exit_2_with_a_reason() {
@@ -39,7 +31,7 @@ fn a_task_gives_prompts_and_bad_tasks_exit_2_with_a_reason() {
     let spec: TaskSpec =
         serde_json::from_slice(&std::fs::read(out.join("task.json")).unwrap()).unwrap();
     assert_eq!(spec.target, "book");
-    let prompts = lines(&out.join("prompts.jsonl"));
+    let prompts = json_lines(&out.join("prompts.jsonl"));
     assert_eq!(prompts.len(), 6);
     let rooms: std::collections::BTreeSet<&str> = prompts
         .iter()
@@ -74,7 +66,7 @@ fn generated_task_scenes_hold_the_objects_with_the_goal_false_and_are_kept_on_a_
     ];
     let r = scenesmith(&args, &[]);
     assert!(r.status.success(), "{}", text(&r));
-    let rows = lines(&out.join("scenes.jsonl"));
+    let rows = json_lines(&out.join("scenes.jsonl"));
     assert_eq!(rows.len(), 1);
     assert!(rows[0]["failure"].is_null(), "{}", rows[0]);
     let spec: TaskSpec =
@@ -134,7 +126,7 @@ fn generated_task_scenes_hold_the_objects_with_the_goal_false_and_are_kept_on_a_
     // A second run finds the scene on disk and keeps it.
     let again = scenesmith(&args, &[]);
     assert!(again.status.success(), "{}", text(&again));
-    let rows = lines(&out.join("scenes.jsonl"));
+    let rows = json_lines(&out.join("scenes.jsonl"));
     assert_eq!(rows[0]["attempts"].as_u64(), Some(0), "{}", rows[0]);
 }
 
@@ -274,4 +266,88 @@ fn an_llm_reads_a_task_the_grammar_cannot_and_its_words_are_grounded_the_same_wa
     );
     assert_eq!(r.status.code(), Some(2), "{}", text(&r));
     assert!(text(&r).contains("names no object"), "{}", text(&r));
+}
+
+#[test]
+fn an_llm_evaluator_judges_a_state_over_the_bridge_tools() {
+    use scenesmith::agents::llm::LlmConfig;
+    use scenesmith::agents::llm::transport::HttpTransport;
+    use scenesmith::physics::BridgePool;
+    use scenesmith::task::llm_judge::{JudgedState, judge_with_llm};
+
+    let root = tempfile::tempdir().unwrap();
+    let dir = root.path().join("scene");
+    generate_quick(
+        "a living room with a sofa, a coffee table and a mug on the coffee table",
+        &dir,
+    );
+    let scene = read_scene(&dir).unwrap();
+    let mug = scene
+        .objects
+        .iter()
+        .find(|o| o.category == "mug")
+        .expect("a mug");
+    let Support::Object { parent, .. } = &mug.support else {
+        panic!("the mug stands on an object: {:?}", mug.support);
+    };
+    let mut script = Script::default();
+    script.push(
+        "task",
+        "evaluator",
+        tool_calls(&[("list_objects", r#"{"category": "mug"}"#)]),
+    );
+    let both = serde_json::json!({"object_ids": [mug.id, parent]}).to_string();
+    let support = serde_json::json!({"object_id": mug.id}).to_string();
+    script.push(
+        "task",
+        "evaluator",
+        tool_calls(&[("get_support", &support), ("observe_objects", &both)]),
+    );
+    script.push(
+        "task",
+        "evaluator",
+        tool_calls(&[(
+            "submit_verdict",
+            r#"{"holds": true, "reason": "its whole footprint is on the table"}"#,
+        )]),
+    );
+    let server = MockServer::start(script);
+    let config = LlmConfig {
+        base_url: server.base_url.clone(),
+        model: "mock-model".into(),
+        ..LlmConfig::default()
+    };
+    let mut transport = HttpTransport::new(config, None).unwrap();
+    let spec = scenesmith::task::analyse("put the mug on the coffee table").unwrap();
+    let pool = BridgePool::from_env();
+    let state = JudgedState {
+        scene_dir: &dir,
+        directives: std::path::Path::new("scene.dmd.yaml"),
+        target: &mug.id,
+        reference: parent,
+    };
+    let verdict = judge_with_llm(&mut transport, "mock-model", &pool, &spec, state).unwrap();
+    assert!(verdict.holds);
+    let tools: Vec<&str> = verdict.tools.iter().map(|t| t.tool.as_str()).collect();
+    assert_eq!(tools, ["list_objects", "get_support", "observe_objects"]);
+    // The model was shown the bridge's real answers: the mug in the list, its supporter, and
+    // rendered images.
+    assert!(
+        verdict.tools[0].result.contains(&mug.id),
+        "{:?}",
+        verdict.tools[0]
+    );
+    assert!(
+        verdict.tools[1].result.contains(parent.as_str()),
+        "{:?}",
+        verdict.tools[1]
+    );
+    assert!(verdict.tools[2].images >= 1, "{:?}", verdict.tools[2]);
+    let received = server.script.lock().unwrap().received.clone();
+    assert_eq!(received.len(), 3);
+    let last = received[2]["messages"].to_string();
+    assert!(
+        last.contains("data:image/png;base64,iVBOR"),
+        "a PNG went to the model"
+    );
 }

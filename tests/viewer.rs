@@ -8,7 +8,7 @@ mod common;
 use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Stdio};
 
-use common::{home, scenesmith, text};
+use common::{generate_quick, home, scenesmith, text};
 
 /// Kills the server when the test ends, passing or not.
 struct Server(Child);
@@ -31,20 +31,10 @@ fn the_viewer_shows_picks_and_highlights_an_object_in_chromium() {
     let dir = root.path().join("scene");
     let d = dir.to_str().unwrap();
     // No GLB export: `view` writes it before serving.
-    let r = scenesmith(
-        &[
-            "generate",
-            "a bedroom with a bed, a nightstand and a lamp on the nightstand",
-            "--out",
-            d,
-            "--no-stb",
-            "--no-render",
-            "--export",
-            "none",
-        ],
-        &[],
+    generate_quick(
+        "a bedroom with a bed, a nightstand and a lamp on the nightstand",
+        &dir,
     );
-    assert!(r.status.success(), "{}", text(&r));
     assert!(!dir.join("export/scene.glb").exists());
 
     let build = run(Command::new(home().join("scripts/build_viewer.sh")).arg("--quiet"));

@@ -8,9 +8,12 @@ numbers it used.
     state = load_state("scene_dir")            # scene.dmd.yaml; or dmd="after_<policy>.dmd.yaml"
     get_support(state, "mug_0")["supporters"]   # JSON-ready dicts
 
-What it does not do: vision tools (observe_scene, observe_objects), the LLM evaluator, binding
-a task's words to a policy's instances, or changing the state (every tool reads the poses of
-the directives file it was loaded from).
+    result, images = run_tool(state, args)     # one tool call of the LLM evaluator (llm_tools)
+
+What it does not do: the LLM evaluator's conversation (the Rust side holds it and calls
+`run_tool` through the bridge op `evaluator_tool`), binding a task's words to a policy's
+instances, or changing the state (every tool reads the poses of the directives file it was
+loaded from).
 
 | Module | One concept |
 |---|---|
@@ -18,6 +21,8 @@ the directives file it was loaded from).
 | `geometry.py` | numpy geometry: 2-D hulls, footprint fractions, interval gaps, box-in-box volume |
 | `tools.py` | the state tools (list_objects, get_object_info, get_distance, get_spatial_relation, get_support) and their shared measurements |
 | `builtin.py` | the built-in evaluator: thresholds, `evaluate`, `judge` |
+| `vision.py` | the vision tools (observe_scene, observe_objects): RenderEngineVtk views of a state |
+| `llm_tools.py` | `run_tool`: every tool as the LLM evaluator calls it, bad arguments as `{"error"}` |
 """
 
 from drake_bridge.evaluator.builtin import (
@@ -31,6 +36,7 @@ from drake_bridge.evaluator.builtin import (
     evaluate,
     judge,
 )
+from drake_bridge.evaluator.llm_tools import run_tool
 from drake_bridge.evaluator.state import SceneState, category_matches, load_state, matching_ids
 from drake_bridge.evaluator.tools import (
     SUPPORT_CONTACT_M,
@@ -40,6 +46,7 @@ from drake_bridge.evaluator.tools import (
     get_support,
     list_objects,
 )
+from drake_bridge.evaluator.vision import observe_objects, observe_scene
 
 __all__ = [
     "INSIDE_MIN_VOLUME",
@@ -61,4 +68,7 @@ __all__ = [
     "list_objects",
     "load_state",
     "matching_ids",
+    "observe_objects",
+    "observe_scene",
+    "run_tool",
 ]

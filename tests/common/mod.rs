@@ -82,3 +82,31 @@ pub fn dev_prompt(id: &str) -> String {
         .map(|(_, p)| p)
         .unwrap_or_else(|| panic!("no dev prompt {id}"))
 }
+
+/// Generates `prompt` into `out` the quick way (no stability simulations, no renders, no
+/// exports) and asserts it succeeded.
+pub fn generate_quick(prompt: &str, out: &Path) {
+    let r = scenesmith(
+        &[
+            "generate",
+            prompt,
+            "--out",
+            out.to_str().expect("a UTF-8 path"),
+            "--no-stb",
+            "--no-render",
+            "--export",
+            "none",
+        ],
+        &[],
+    );
+    assert!(r.status.success(), "{}", text(&r));
+}
+
+/// The JSON values of a JSON-lines file.
+pub fn json_lines(path: &Path) -> Vec<serde_json::Value> {
+    std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .lines()
+        .map(|l| serde_json::from_str(l).expect("a JSON line"))
+        .collect()
+}
