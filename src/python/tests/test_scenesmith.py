@@ -82,6 +82,19 @@ def test_a_second_parser_package_is_not_added_twice(generated):
     assert len(scene.add_to_plant(plant, parser)) == len(scene.objects)
 
 
+def test_a_package_name_mapped_to_another_directory_is_refused(generated, tmp_path):
+    scene = generated[0]
+    other = tmp_path / scene.package_name
+    other.mkdir()
+    (other / "package.xml").write_text(scene.paths["package_xml"].read_text())
+    builder = DiagramBuilder()
+    plant, _ = AddMultibodyPlantSceneGraph(builder, 0.0)
+    parser = Parser(plant)
+    parser.package_map().AddPackageXml(str(other / "package.xml"))
+    with pytest.raises(scenesmith.ScenesmithError, match="already maps package"):
+        scene.add_to_plant(plant, parser)
+
+
 def test_evaluate_and_export_write_their_files(generated):
     scene = generated[0]
     metrics = scenesmith.evaluate(scene.dir, stb=False)

@@ -56,6 +56,13 @@ class Scene:
         packages = parser.package_map()
         if not packages.Contains(self.package_name):
             packages.AddPackageXml(str(self.paths["package_xml"]))
+        elif Path(packages.GetPath(self.package_name)).resolve() != self.dir:
+            # Two scenes whose directories share a name: the directives would silently load
+            # the other scene's assets.
+            raise ScenesmithError(
+                f"the parser already maps package {self.package_name!r} to "
+                f"{packages.GetPath(self.package_name)}, not {self.dir}; use a new Parser "
+                f"(or scene directories with different names)")
         directives = LoadModelDirectives(str(self.paths["directives"]))
         infos = ProcessModelDirectives(directives, plant, parser)
         return {info.model_name: info.model_instance for info in infos}
