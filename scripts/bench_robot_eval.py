@@ -1,0 +1,174 @@
+#!/usr/bin/env python3
+"""The robot-policy benchmark of issue 14: the paper's four pick-and-place tasks, N scenes each,
+the standard and the degraded policy, success rates with 95 % Wilson intervals.
+
+For each task it runs `scenesmith robot-eval "<task>" --scenes N --policy standard,degraded
+--out OUT/<task id>` and reads that run's `results.json`: per policy the episodes, successes and
+the Wilson interval, the outcomes that were not a success (`placed_wrong` or the policy's
+failure reason: no_base_pose, no_grasp, ik, planning, dropped, timeout; `error` for a bridge
+error) and the mean wall seconds of an episode. A task the binary refuses (exit status and its
+last stderr line) is a row of its own, not a crash. Resumable: robot-eval keeps the checked
+scenes it already generated under OUT/<task id>/scenes, and a task whose results.json exists is
+read, not rerun, unless --rerun.
+
+    .venv/bin/python scripts/bench_robot_eval.py --out out/bench_robot [--scenes 10]
+        [--bin target/release/scenesmith] [--tasks fruit,can] [--no-frames] [--rerun] [--json]
+
+The binary is --bin, else $SCENESMITH_BIN, else <repo>/target/release/scenesmith.
+"""
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+#: The paper's four tasks (id -> text), in the paper's order.
+TASKS = {
+    "fruit": "pick a fruit from the fruit bowl and place it on a plate on the dining table",
+    "can": "pick a coke can from the shelf and place it on the table",
+    "cup": "pick a cup from the floor and place it in the sink",
+    "bottle": "bring the water bottle from the kitchen to the coffee table in the living room",
+}
+POLICIES = ("standard", "degraded")
+
+
+def wilson95(k, n):
+    """The 95 % Wilson score interval of k successes in n trials (robot_eval.rs's formula)."""
+    if n == 0:
+        return (0.0, 1.0)
+    z = 1.959963984540054
+    p = k / n
+    denom = 1.0 + z * z / n
+    centre = (p + z * z / (2 * n)) / denom
+    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / denom
+    return (max(0.0, centre - half), min(1.0, centre + half))
+
+
+def binary_path(arg):
+    return arg or os.environ.get("SCENESMITH_BIN") or os.path.join(
+        REPO, "target", "release", "scenesmith")
+
+
+def run_task(binary, text, out_dir, scenes, frames, log):
+    """Runs robot-eval for one task; returns (exit status, last stderr line)."""
+    cmd = [binary, "robot-eval", text, "--scenes", str(scenes), "--policy",
+           ",".join(POLICIES), "--out", out_dir]
+    if not frames:
+        cmd.append("--no-frames")
+    os.makedirs(out_dir, exist_ok=True)
+    with open(os.path.join(out_dir, "bench.log"), "a") as f:
+        proc = subprocess.Popen(cmd, stdout=f, stderr=subprocess.PIPE, text=True)
+        last = ""
+        for line in proc.stderr:
+            f.write(line)
+            f.flush()
+            if line.strip():
+                last = line.strip()
+                log(f"  {line.rstrip()}")
+        return proc.wait(), last
+
+
+def summarise(results):
+    """Per policy: episodes, successes, interval, failure counts, mean seconds; from a parsed
+    results.json (RobotEvalResults in src/task/robot_eval.rs)."""
+    usable = sum(1 for b in results.get("bindings", []) if b.get("target"))
+    out = {"scenes": len(results.get("scenes", [])), "bound": usable, "policies": {}}
+    for policy in POLICIES:
+        rows = [e for e in results.get("episodes", []) if e.get("policy") == policy]
+        k = sum(1 for e in rows if e.get("outcome") == "success")
+        failures = {}
+        for e in rows:
+            if e.get("outcome") != "success":
+                failures[e.get("outcome", "?")] = failures.get(e.get("outcome", "?"), 0) + 1
+        seconds = [float(e.get("seconds", 0.0)) for e in rows]
+        out["policies"][policy] = {
+            "episodes": len(rows), "successes": k, "ci95": wilson95(k, len(rows)),
+            "failures": failures,
+            "mean_seconds": sum(seconds) / len(seconds) if seconds else None,
+            "max_seconds": max(seconds) if seconds else None,
+        }
+    return out
+
+
+def cell(p):
+    if p is None or p["episodes"] == 0:
+        return "-"
+    k, n = p["successes"], p["episodes"]
+    lo, hi = p["ci95"]
+    return f"{k}/{n} {100 * k / n:.0f}% [{100 * lo:.0f}-{100 * hi:.0f}]"
+
+
+def table(rows):
+    head = ["task", "scenes", "bound", "standard k/n % [95% CI]", "degraded k/n % [95% CI]",
+            "standard failures", "degraded failures", "mean s (std/deg)"]
+    lines = [head]
+    total = {p: [0, 0] for p in POLICIES}
+    for task_id, s in rows:
+        if "error" in s:
+            lines.append([task_id, "-", "-", "-", "-", s["error"][:120], "", ""])
+            continue
+        ps = s["policies"]
+        for p in POLICIES:
+            total[p][0] += ps[p]["successes"]
+            total[p][1] += ps[p]["episodes"]
+        fails = [", ".join(f"{k} {v}" for k, v in sorted(ps[p]["failures"].items())) or "-"
+                 for p in POLICIES]
+        secs = "/".join("-" if ps[p]["mean_seconds"] is None else f"{ps[p]['mean_seconds']:.0f}"
+                        for p in POLICIES)
+        lines.append([task_id, str(s["scenes"]), str(s["bound"]), cell(ps["standard"]),
+                      cell(ps["degraded"]), fails[0], fails[1], secs])
+    all_cells = []
+    for p in POLICIES:
+        k, n = total[p]
+        all_cells.append(cell({"episodes": n, "successes": k, "ci95": wilson95(k, n)}))
+    lines.append(["all", "", "", all_cells[0], all_cells[1], "", "", ""])
+    widths = [max(len(r[i]) for r in lines) for i in range(len(head))]
+    return "\n".join("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in lines)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--out", required=True, help="output directory (one subdirectory a task)")
+    ap.add_argument("--scenes", type=int, default=10)
+    ap.add_argument("--bin", default=None)
+    ap.add_argument("--tasks", default=",".join(TASKS), help="comma-separated task ids: "
+                    + ", ".join(f"{k} ({v})" for k, v in TASKS.items()))
+    ap.add_argument("--no-frames", action="store_true")
+    ap.add_argument("--rerun", action="store_true", help="rerun tasks with a results.json")
+    ap.add_argument("--json", action="store_true", help="print the summary as JSON")
+    args = ap.parse_args(argv)
+    binary = binary_path(args.bin)
+    if not os.access(binary, os.X_OK):
+        sys.exit(f"no scenesmith binary at {binary} (build it, or set --bin / SCENESMITH_BIN)")
+    rows = []
+    for task_id in args.tasks.split(","):
+        if task_id not in TASKS:
+            sys.exit(f"unknown task id {task_id!r}; expected one of {', '.join(TASKS)}")
+        out_dir = os.path.join(args.out, task_id)
+        results_path = os.path.join(out_dir, "results.json")
+        if args.rerun or not os.path.exists(results_path):
+            print(f"{task_id}: robot-eval {TASKS[task_id]!r}", file=sys.stderr, flush=True)
+            start = time.monotonic()
+            status, last = run_task(binary, TASKS[task_id], out_dir, args.scenes,
+                                    not args.no_frames,
+                                    lambda line: print(line, file=sys.stderr, flush=True))
+            print(f"{task_id}: exit {status} after {time.monotonic() - start:.0f} s",
+                  file=sys.stderr, flush=True)
+            if not os.path.exists(results_path):
+                rows.append((task_id, {"error": f"exit {status}: {last}"}))
+                continue
+        with open(results_path) as f:
+            rows.append((task_id, summarise(json.load(f))))
+    if args.json:
+        print(json.dumps({k: v for k, v in rows}, indent=1))
+    else:
+        print(table(rows))
+
+
+if __name__ == "__main__":
+    main()
