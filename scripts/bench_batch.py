@@ -15,7 +15,8 @@ import tempfile
 import time
 from pathlib import Path
 
-REPO = Path(__file__).resolve().parent.parent
+from ray_batch import REPO, binary  # the same binary lookup (and first build) as Ray's
+
 DEV = REPO / "tests" / "fixtures" / "dev_prompts.jsonl"
 
 
@@ -28,10 +29,7 @@ def main():
     ap.add_argument("--runs", default="batch1,batch2,ray1,ray2")
     args = ap.parse_args(argv[:cut])
     extra = argv[cut + 1:]
-    bin_path = os.environ.get("SCENESMITH_BIN", str(REPO / "target" / "release" / "scenesmith"))
-    if "SCENESMITH_BIN" not in os.environ:
-        subprocess.run(["cargo", "build", "--release", "--quiet", "--bin", "scenesmith",
-                        "--manifest-path", str(REPO / "Cargo.toml")], check=True)
+    bin_path = binary()
     env = dict(os.environ, SCENESMITH_HOME=str(REPO), SCENESMITH_BIN=bin_path)
     lines = [json.loads(l) for l in args.prompts.read_text().splitlines() if l.strip()]
     lines = lines[:args.scenes]

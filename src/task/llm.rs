@@ -66,6 +66,27 @@ fn submitted(message: &Value) -> Result<Submitted, String> {
     serde_json::from_str(raw).map_err(|e| format!("submit_task arguments: {e}"))
 }
 
+/// One deterministic chat request of the task stage with `tools`: the assistant's message.
+pub(super) fn ask(
+    transport: &mut dyn Transport,
+    meta: &CallMeta,
+    model: &str,
+    messages: &[Value],
+    tools: Value,
+) -> Result<Value, TaskError> {
+    let request = json!({
+        "model": model,
+        "messages": messages,
+        "tools": tools,
+        "tool_choice": "auto",
+        "temperature": 0.0,
+    });
+    let response = transport
+        .complete(meta, &request)
+        .map_err(|e| TaskError::Llm(e.to_string()))?;
+    assistant_message(&response).map_err(|e| TaskError::Llm(e.to_string()))
+}
+
 /// Reads `task` through `transport` (model `model`). See the module documentation.
 pub fn analyse_with_llm(
     transport: &mut dyn Transport,
@@ -85,17 +106,7 @@ pub fn analyse_with_llm(
     ];
     let mut last = String::new();
     for _ in 0..ATTEMPTS {
-        let request = json!({
-            "model": model,
-            "messages": messages,
-            "tools": submit_tool(),
-            "tool_choice": "auto",
-            "temperature": 0.0,
-        });
-        let response = transport
-            .complete(&meta, &request)
-            .map_err(|e| TaskError::Llm(e.to_string()))?;
-        let message = assistant_message(&response).map_err(|e| TaskError::Llm(e.to_string()))?;
+        let message = ask(transport, &meta, model, &messages, submit_tool())?;
         match submitted(&message) {
             Ok(s) => return spec_of(task, s),
             Err(why) => {

@@ -11,8 +11,9 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 use serde_json::{Value, json};
 
+use super::llm::ask;
 use super::{Predicate, TaskError, TaskSpec};
-use crate::agents::llm::transport::{CallMeta, Transport, assistant_message};
+use crate::agents::llm::transport::{CallMeta, Transport};
 use crate::physics::pool::BridgePool;
 use crate::physics::protocol::{EvalTool, EvalToolArgs, EvalToolReply, EvaluatorTool};
 
@@ -202,17 +203,7 @@ pub fn judge_with_llm(
     let mut record = Vec::new();
     let mut last_problem = String::from("no reply");
     for _ in 0..MAX_TURNS {
-        let request = json!({
-            "model": model,
-            "messages": messages,
-            "tools": tools(),
-            "tool_choice": "auto",
-            "temperature": 0.0,
-        });
-        let response = transport
-            .complete(&meta, &request)
-            .map_err(|e| TaskError::Llm(e.to_string()))?;
-        let message = assistant_message(&response).map_err(|e| TaskError::Llm(e.to_string()))?;
+        let message = ask(transport, &meta, model, &messages, tools())?;
         let calls = message["tool_calls"]
             .as_array()
             .cloned()
@@ -377,6 +368,15 @@ mod tests {
         json!({"role": "assistant", "content": null, "tool_calls": calls})
     }
 
+    fn mug_on_table() -> JudgedState<'static> {
+        JudgedState {
+            scene_dir: Path::new("/s"),
+            directives: Path::new("scene.dmd.yaml"),
+            target: "mug_0",
+            reference: "table_0",
+        }
+    }
+
     fn spec() -> TaskSpec {
         crate::task::analyse("put the mug on the table").expect("a task")
     }
@@ -399,12 +399,7 @@ mod tests {
             seen: Vec::new(),
         };
         let runner = Echo(RefCell::new(Vec::new()));
-        let state = JudgedState {
-            scene_dir: Path::new("/s"),
-            directives: Path::new("scene.dmd.yaml"),
-            target: "mug_0",
-            reference: "table_0",
-        };
+        let state = mug_on_table();
         let v = judge_with_llm(&mut t, "m", &runner, &spec(), state).expect("a verdict");
         assert!(v.holds);
         assert_eq!(v.tools.len(), 2);
@@ -435,12 +430,7 @@ mod tests {
             seen: Vec::new(),
         };
         let runner = Echo(RefCell::new(Vec::new()));
-        let state = JudgedState {
-            scene_dir: Path::new("/s"),
-            directives: Path::new("scene.dmd.yaml"),
-            target: "mug_0",
-            reference: "table_0",
-        };
+        let state = mug_on_table();
         let err = judge_with_llm(&mut t, "m", &runner, &spec(), state).expect_err("no verdict");
         assert!(err.to_string().contains("no verdict"), "{err}");
         assert!(
