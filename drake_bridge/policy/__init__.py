@@ -8,7 +8,8 @@ reference) can hold, planned and then simulated closed loop in Drake.
     dataclasses.asdict(result)  # JSON-ready; also written to out_dir/episode_standard.json
 
 What it does not do: judge success (a separate evaluator reads `after_<policy>.dmd.yaml`),
-bind task words to instances (the caller names the instances), navigate between rooms.
+bind task words to instances (the caller names the instances). Between rooms of a house it
+drives the base along a lattice path (navigation.py) with the object held and the arm tucked.
 
 | Module | One concept |
 |---|---|
@@ -19,6 +20,7 @@ bind task words to instances (the caller names the instances), navigate between 
 | `placement.py` | place locations per predicate, base pose candidates |
 | `ik.py` | grasp-frame IK with minimum-distance constraints |
 | `rrt.py` | RRT-Connect and randomized shortcutting |
+| `navigation.py` | the base's drive between rooms: lazy A* on a navigability lattice |
 | `timing.py` | TOPPRA with joint, torque and gripper limits |
 | `rollout.py` | the closed-loop simulation, drop detection |
 | `frames.py` | rendering recorded states (VTK), the flipbook animation |

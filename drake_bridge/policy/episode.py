@@ -11,7 +11,8 @@ The plan, in order (segment names as in `EpisodeResult.trajectory.segments`):
             lacks travel); only its upper end is collision-checked, its lower end touches the
             support by design
   [tuck, drive, unfold]  only when no place location is reachable from the pick base: RRT to
-            the arm's home pose, the base moved (straight, else RRT over x, y, yaw), RRT out
+            the arm's home pose, the base driven (straight, else lazy A* on the navigability
+            lattice of navigation.py: through doorways to another room of a house), RRT out
   carry     RRT-Connect with the held object, carrying clearance as the policy says, to the
             pre-place (12 cm above the place pose)
   lower     straight down to the place pose (object 1 cm above the surface)
@@ -19,8 +20,8 @@ The plan, in order (segment names as in `EpisodeResult.trajectory.segments`):
   retreat   the lift joint up 10 cm
 Every RRT path is shortcut, every move is timed by TOPPRA (timing.py), and the whole plan is
 sampled every 10 ms into one cubic Hermite trajectory of [q, v] that the simulated robot
-tracks (rollout.py). The robot appears at the pick base at home; there is no navigation from
-elsewhere (house tasks with a navigability map are future work).
+tracks (rollout.py). The robot appears at the pick base at home; a house task (the reference
+in another room) is the drive above, as long as the house between the rooms is.
 """
 
 import contextlib
@@ -37,6 +38,7 @@ from pydrake.trajectories import PiecewisePolynomial
 from drake_bridge.policy import placement
 from drake_bridge.policy.grasp import gripper_boxes, sample_grasps
 from drake_bridge.policy.ik import solve_grasp_frame_ik
+from drake_bridge.policy.navigation import nearest_equivalent_yaw, plan_base_path
 from drake_bridge.policy.frames import FrameRenderer, camera_pose, flipbook_html
 from drake_bridge.policy.output import (
     write_after_directives,
@@ -86,6 +88,10 @@ SAMPLE_DT_S = 0.01
 CONTACT_REGION_INFLATE_M = 0.3
 #: Frames per second of the flipbook animation.
 FLIPBOOK_FPS = 4.0
+#: Budget of the drive's lattice search (expansions) and the margin around the rooms' floor
+#: bounds it may use (m).
+NAV_MAX_EXPANSIONS = 40_000
+NAV_BOUNDS_MARGIN_M = 0.2
 #: The base far outside the scene: the robot out of every scene query.
 PARK = {"base_x": -50.0, "base_y": -50.0, "base_yaw": 0.0}
 
@@ -393,6 +399,26 @@ class Episode:
             except PlanningTimeout:
                 raise PolicyFailure("timeout", f"planning budget spent in RRT ({what})")
 
+    def drive(self, model, q_from, q_to):
+        """The base's path from q_from to q_to (navigation.py), inside the rooms' floor bounds."""
+        self._check_time("drive")
+        bounds = _room_bounds(self.spec)
+        if bounds is not None:
+            m = NAV_BOUNDS_MARGIN_M
+            bounds = ((bounds[0][0] - m, bounds[0][1] - m), (bounds[1][0] + m, bounds[1][1] + m))
+        stats = {}
+        with self.clock.phase("planning"):
+            try:
+                path = plan_base_path(model.checker, q_from, q_to, model.indices(BASE_JOINTS),
+                                      self.deadline, max_expansions=NAV_MAX_EXPANSIONS,
+                                      xy_bounds=bounds, stats=stats)
+            except PlanningTimeout:
+                raise PolicyFailure("timeout", "planning budget spent driving the base")
+        if path is None:
+            raise PolicyFailure("planning", f"no drive for the base to the place pose "
+                                f"({stats.get('outcome', 'no path')})")
+        return path
+
     def plan(self):
         """The segments of the motion (module doc)."""
         a, c = self.approach, self.carry
@@ -401,7 +427,6 @@ class Episode:
         X_WO, q_preplace, q_place = place
         self.grasp, self.X_GO, self.X_WO_place = g, X_GO, X_WO
         closed = g.finger_target()
-        holding = g.width / 2
         self.q_start = self.q_at(a, base)
         seg = [_Segment("approach", a, self.rrt(a, self.q_start, q_pre, ARM_PLANNING_JOINTS,
                                                 "approach"), (FINGER_OPEN_M,) * 2, False),
@@ -409,11 +434,19 @@ class Episode:
                _Segment("close", a, [q_grasp], (FINGER_OPEN_M, closed), False,
                         dwell_s=(FINGER_OPEN_M - closed) / FINGER_SPEED_M_S + 0.5),
                _Segment("lift", c, [q_held, q_lift], (closed,) * 2, True)]
+        if base2 != base:
+            # Turn the short way: the place base's yaw (and with it the place configurations')
+            # as the equivalent angle nearest the pick base's.
+            i = c.index["base_yaw"]
+            turn = nearest_equivalent_yaw(base2[2], base[2]) - base2[2]
+            q_preplace, q_place = q_preplace.copy(), q_place.copy()
+            q_preplace[i] += turn
+            q_place[i] += turn
         if base2 == base:
             seg.append(_Segment("carry", c, self.rrt(c, q_lift, q_preplace, ARM_PLANNING_JOINTS,
                                                      "carry"), (closed,) * 2, True))
         else:
-            seg.extend(self._drive_segments(q_lift, q_preplace, base2, holding, closed))
+            seg.extend(self._drive_segments(q_lift, q_preplace, closed))
         q_open = q_place.copy()
         q_open[c.indices(FINGER_JOINTS)] = FINGER_OPEN_M
         q_open = c.with_held_pose(q_open, X_GO_PARKED)
@@ -427,7 +460,7 @@ class Episode:
                 _Segment("retreat", c, [q_open, q_retreat], (FINGER_OPEN_M,) * 2, False)]
         self.segments = seg
 
-    def _drive_segments(self, q_lift, q_preplace, base2, holding, closed):
+    def _drive_segments(self, q_lift, q_preplace, closed):
         c = self.carry
         tuck = {n: self.home[n] for n in ARM_PLANNING_JOINTS}
         for lift in (0.6, 0.3, 0.0):
@@ -440,11 +473,10 @@ class Episode:
         else:
             raise PolicyFailure("planning", "no collision-free carrying pose to drive with")
         q_tuck2 = q_tuck1.copy()
-        q_tuck2[c.indices(BASE_JOINTS)] = base2
+        q_tuck2[c.indices(BASE_JOINTS)] = q_preplace[c.indices(BASE_JOINTS)]
         return [_Segment("tuck", c, self.rrt(c, q_lift, q_tuck1, ARM_PLANNING_JOINTS, "tuck"),
                          (closed,) * 2, True),
-                _Segment("drive", c, self.rrt(c, q_tuck1, q_tuck2, BASE_JOINTS, "drive"),
-                         (closed,) * 2, True),
+                _Segment("drive", c, self.drive(c, q_tuck1, q_tuck2), (closed,) * 2, True),
                 _Segment("unfold", c, self.rrt(c, q_tuck2, q_preplace, ARM_PLANNING_JOINTS,
                                                "unfold"), (closed,) * 2, True)]
 

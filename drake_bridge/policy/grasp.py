@@ -8,8 +8,10 @@ The width (p_a - p_b along n_a) must fit in the stroke less a clearance on each 
 (the right finger on p_a), its origin half the width inside p_a, its approach +z
 perpendicular to y: first the one
 closest to straight down, then turned about y in ROTATIONS_DEG steps (top-down approaches
-score higher). Closing axes within VERTICAL_AXIS_DEG of vertical are skipped (they would pinch
-the object between table-level finger tips).
+score higher), and each also held shallower: the frame moved back along the approach by each of
+DEPTHS_M, so the contacts sit nearer the finger tips and the tips stay clear of what the object
+stands in (an apple in a fruit bowl, a can on a board). Closing axes within VERTICAL_AXIS_DEG
+of vertical are skipped (they would pinch the object between table-level finger tips).
 
 Collision check of the open gripper (fingers at 55 mm): the gripper's collision boxes (body,
 fingers, and the last arm link's cylinder as its bounding box), inflated by ENV_MARGIN_M, must
@@ -19,7 +21,8 @@ through a 18 mm finger unseen, so this is a reliable filter; the exact check fol
 (minimum distance) and in the collision checker.
 
 Score (higher is better): top_down + 0.3 * antipodal alignment - 2.0 * horizontal distance of
-the grasp centre from the object's centre of mass (m) - 1.0 * its vertical distance (m).
+the grasp centre from the object's centre of mass (m) - 1.0 * its vertical distance (m) - 2.0 *
+the depth offset (m).
 """
 
 import dataclasses as dc
@@ -40,6 +43,10 @@ LINE_TOL_M = 0.004
 FRICTION_CONE_DEG = 20.0
 VERTICAL_AXIS_DEG = 25.0
 ROTATIONS_DEG = (0.0, 30.0, -30.0, 60.0, -60.0, 90.0, -90.0)
+#: How far the grasp frame may sit back along the approach from the contacts' centre (m): the
+#: finger pads reach 30 mm past the frame's origin, so 20 mm leaves the contacts 10 mm from
+#: the tips.
+DEPTHS_M = (0.0, 0.012, 0.02)
 ENV_MARGIN_M = 0.008
 TARGET_MARGIN_M = 0.003
 #: The closed finger target is this far inside each contact: the finger PD (2000 N/m in the
@@ -149,7 +156,9 @@ def sample_grasps(target_cloud, env_cloud, boxes, p_com_W, rng, max_grasps=20,
             top_down = float(z_G @ down)
             score = (top_down + 0.3 * alignment - 2.0 * float(np.linalg.norm(d[:2]))
                      - 1.0 * abs(float(d[2])))
-            candidates.append((score, top_down, _frame(y_G, z_G, centre), p_a, p_b, width))
+            for depth in DEPTHS_M:
+                candidates.append((score - 2.0 * depth, top_down,
+                                   _frame(y_G, z_G, centre - depth * z_G), p_a, p_b, width))
     candidates.sort(key=lambda c: -c[0])
 
     near_env = env_cloud.p

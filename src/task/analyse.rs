@@ -5,7 +5,7 @@ use std::sync::OnceLock;
 
 use serde::Deserialize;
 
-use super::{Predicate, TaskError, TaskSpec};
+use super::{AcrossRooms, NamedRooms, Predicate, TaskError, TaskSpec};
 use crate::knowledge::knowledge;
 use crate::knowledge::rooms::RoomType;
 
@@ -143,6 +143,20 @@ fn ground(phrase: &[String]) -> Option<Grounded> {
     })
 }
 
+/// The start of an object that lies on the floor ("pick the cup from the floor"): no object,
+/// so never required, but every scene puts the object there.
+pub const FLOOR: &str = "floor";
+
+/// Whether a phrase names the floor ("the floor", "the ground").
+fn names_floor(phrase: &[String]) -> bool {
+    let content: Vec<&str> = phrase
+        .iter()
+        .map(String::as_str)
+        .filter(|w| !FILLERS.contains(w))
+        .collect();
+    matches!(content.as_slice(), ["floor"] | ["ground"])
+}
+
 /// The room type a phrase names ("the kitchen"), if any.
 fn room_named(phrase: &[String]) -> Option<String> {
     let content: Vec<&str> = phrase
@@ -174,15 +188,18 @@ pub fn analyse(task: &str) -> Result<TaskSpec, TaskError> {
         role: "the object to move",
         phrase: target_phrase.join(" "),
     })?;
-    // Then, in any order: a `from` phrase, the relation and its reference, a room.
-    let (mut start, mut relation, mut room) = (None, None, None);
+    // Then, in any order: a `from` phrase, the relation and its reference, rooms. A room in a
+    // `from` phrase or before the relation is the object's; one after it is the reference's.
+    let (mut start, mut relation) = (None, None);
+    let mut rooms = NamedRooms::default();
     let mut i = target_end;
     while i < tokens.len() {
         if let Some((n, _)) = longest_at(&tokens, i, w.from.iter().map(String::as_str)) {
             let end = phrase_end(&tokens, i + n);
             let phrase = &tokens[i + n..end];
             match room_named(phrase) {
-                Some(r) => room = room.or(Some(r)),
+                Some(r) => rooms.start = rooms.start.or(Some(r)),
+                None if names_floor(phrase) => start = start.or(Some(FLOOR.to_string())),
                 None => start = start.or(ground(phrase).map(|g| g.noun)),
             }
             i = end.max(i + 1);
@@ -190,7 +207,12 @@ pub fn analyse(task: &str) -> Result<TaskSpec, TaskError> {
             let end = phrase_end(&tokens, i + n);
             let phrase = &tokens[i + n..end];
             if let Some(r) = room_named(phrase) {
-                room = room.or(Some(r));
+                let slot = if relation.is_none() {
+                    &mut rooms.start
+                } else {
+                    &mut rooms.goal
+                };
+                *slot = slot.take().or(Some(r));
             } else if relation.is_none() {
                 let reference = ground(phrase).ok_or_else(|| TaskError::NotAnObject {
                     role: "the reference",
@@ -206,7 +228,7 @@ pub fn analyse(task: &str) -> Result<TaskSpec, TaskError> {
     let Some((predicate, reference)) = relation else {
         return Err(TaskError::NoRelation(task.trim().to_string()));
     };
-    build_spec(task, predicate, target, reference, start, room)
+    build_spec(task, predicate, target, reference, start, rooms)
 }
 
 /// Grounds a free-text noun phrase ("red apple"), as the LLM reader hands them in.
@@ -227,18 +249,26 @@ pub(super) fn build_spec(
     target: Grounded,
     reference: String,
     start: Option<String>,
-    room: Option<String>,
+    rooms: NamedRooms,
 ) -> Result<TaskSpec, TaskError> {
     if reference == target.noun {
         return Err(TaskError::SameObject(reference));
     }
     let start = start.filter(|s| *s != reference && *s != target.noun);
-    let room_types = match room {
-        Some(r) => vec![r],
-        None => fitting_rooms(&target.noun, &reference, start.as_deref()),
+    let across = match (&rooms.start, &rooms.goal) {
+        (Some(a), Some(b)) if a != b => Some(AcrossRooms {
+            start_room: a.clone(),
+            goal_room: b.clone(),
+        }),
+        _ => None,
+    };
+    let room_types = match (&across, rooms.start.or(rooms.goal)) {
+        (Some(x), _) => vec![x.start_room.clone(), x.goal_room.clone()],
+        (None, Some(r)) => vec![r],
+        (None, None) => fitting_rooms(&target.noun, &reference, start.as_deref()),
     };
     let mut required = vec![target.noun.clone(), reference.clone()];
-    required.extend(start.clone());
+    required.extend(start.clone().filter(|s| s != FLOOR));
     let initial_state = format!(
         "no {} is {} a {} at the start",
         target.noun,
@@ -246,7 +276,11 @@ pub(super) fn build_spec(
         reference
     );
     let mut flexible = vec![
-        "room type".to_string(),
+        if across.is_some() {
+            "the house's other rooms".to_string()
+        } else {
+            "room type".to_string()
+        },
         "style".to_string(),
         "room size".to_string(),
         "other furniture".to_string(),
@@ -265,6 +299,7 @@ pub(super) fn build_spec(
         reference,
         start,
         room_types,
+        across,
         required,
         initial_state,
         flexible,

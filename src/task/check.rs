@@ -4,7 +4,7 @@
 use nalgebra::Point3;
 use serde::{Deserialize, Serialize};
 
-use super::{NEAR_M, Predicate, TaskSpec};
+use super::{FLOOR, NEAR_M, Predicate, TaskSpec};
 use crate::eval::requirements::object_matches;
 use crate::scene::{Scene, SceneObject, Support};
 
@@ -105,24 +105,52 @@ pub fn goal_holds(spec: &TaskSpec, scene: &Scene, t: &SceneObject, r: &SceneObje
     }
 }
 
+/// Whether `o` stands in a room of type `room_type`.
+fn in_room_of_type(scene: &Scene, o: &SceneObject, room_type: &str) -> bool {
+    scene
+        .rooms
+        .iter()
+        .any(|r| r.id == o.room && r.room_type == room_type)
+}
+
 /// Checks `scene` against `spec`: missing required objects, and the pairs for which the goal
-/// already holds.
+/// already holds. For a task across rooms only objects in the start room may be moved and only
+/// references in the goal room count (a missing one is named with its room).
 pub fn check_scene(spec: &TaskSpec, scene: &Scene) -> SceneCheck {
+    let room_of = |label: &str| -> Option<&str> {
+        let x = spec.across.as_ref()?;
+        if label == spec.reference {
+            Some(x.goal_room.as_str())
+        } else {
+            Some(x.start_room.as_str())
+        }
+    };
     let matching = |label: &str| -> Vec<&SceneObject> {
+        let room = room_of(label);
         scene
             .objects
             .iter()
             .filter(|o| object_matches(label, o))
+            .filter(|o| room.is_none_or(|t| in_room_of_type(scene, o, t)))
             .collect()
     };
-    let missing = spec
+    let mut missing: Vec<String> = spec
         .required
         .iter()
         .filter(|r| matching(r).is_empty())
-        .cloned()
+        .map(|r| match room_of(r) {
+            Some(t) => format!("{r} in the {}", t.replace('_', " ")),
+            None => r.clone(),
+        })
         .collect();
-    let targets = matching(&spec.target);
+    let mut targets = matching(&spec.target);
+    if spec.start.as_deref() == Some(FLOOR) {
+        targets.retain(|o| matches!(o.support, Support::Floor { .. }));
+    }
     let references = matching(&spec.reference);
+    if targets.is_empty() && missing.is_empty() {
+        missing.push(format!("{} on the floor", spec.target));
+    }
     let mut goal_holds_for = Vec::new();
     for t in &targets {
         for r in &references {
@@ -142,5 +170,87 @@ pub fn check_scene(spec: &TaskSpec, scene: &Scene) -> SceneCheck {
         references: references.iter().map(|o| o.id.clone()).collect(),
         goal_holds_for,
         bindable,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::BTreeMap;
+
+    use super::*;
+    use crate::scene::{ObjectKind, Pose, Room};
+    use crate::task::analyse;
+
+    /// A kitchen and a living room, a table in each, a mug on each table.
+    fn two_room_scene() -> Scene {
+        let mut s = Scene::new("a house", 1, "scene_test");
+        for (i, t) in ["kitchen", "living_room"].iter().enumerate() {
+            let x = 4.0 * i as f64;
+            s.rooms.push(Room {
+                id: format!("{t}_0"),
+                room_type: t.to_string(),
+                label: None,
+                prompt: String::new(),
+                floor_polygon: vec![[x, 0.0], [x + 4.0, 0.0], [x + 4.0, 4.0], [x, 4.0]],
+                wall_height: 2.5,
+                walls: vec![],
+                floor_material: "wood".into(),
+                wall_material: "plaster".into(),
+            });
+            let object = |id: String, category: &str, kind, support| SceneObject {
+                id,
+                category: category.into(),
+                name: None,
+                kind,
+                room: format!("{t}_0"),
+                asset: format!("{category}_a"),
+                world_from_object: Pose::from_xyz_yaw(x + 2.0, 2.0, 0.0, 0.0),
+                support,
+                welded: false,
+                joint_positions: BTreeMap::new(),
+            };
+            s.objects.push(object(
+                format!("table_{i}"),
+                "table",
+                ObjectKind::Furniture,
+                Support::Floor {
+                    room: format!("{t}_0"),
+                },
+            ));
+            s.objects.push(object(
+                format!("mug_{i}"),
+                "mug",
+                ObjectKind::Manipuland,
+                Support::Object {
+                    parent: format!("table_{i}"),
+                    surface: "top".into(),
+                },
+            ));
+        }
+        s
+    }
+
+    #[test]
+    fn across_rooms_only_the_start_rooms_objects_move_and_only_the_goal_rooms_references_count() {
+        let spec = analyse("bring the mug from the kitchen to the table in the living room")
+            .expect("reads");
+        let mut scene = two_room_scene();
+        let ids = |v: &[String]| v.join(",");
+        // mug_0 on table_0 in the kitchen, mug_1 on table_1 in the living room.
+        let check = check_scene(&spec, &scene);
+        assert_eq!(ids(&check.targets), "mug_0");
+        // mug_1 is on the living room's table already, but it is not the one to move.
+        assert!(
+            check.goal_holds_for.is_empty(),
+            "{:?}",
+            check.goal_holds_for
+        );
+        assert_eq!(ids(&check.references), "table_1");
+        assert!(check.passed(), "{}", check.reason());
+        // Without a table in the living room the scene lacks the reference there.
+        scene.objects.retain(|o| o.id != "table_1");
+        let check = check_scene(&spec, &scene);
+        assert_eq!(check.missing, ["table in the living room"]);
+        assert!(!check.passed());
     }
 }

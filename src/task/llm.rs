@@ -7,6 +7,7 @@
 use serde::Deserialize;
 use serde_json::{Value, json};
 
+use super::NamedRooms;
 use super::analyse::{build_spec, ground_text, room_of_text};
 use super::{Predicate, TaskError, TaskSpec};
 use crate::agents::llm::transport::{CallMeta, Transport, assistant_message};
@@ -26,6 +27,8 @@ struct Submitted {
     start: Option<String>,
     #[serde(default)]
     room: Option<String>,
+    #[serde(default)]
+    start_room: Option<String>,
 }
 
 fn submit_tool() -> Value {
@@ -41,7 +44,8 @@ fn submit_tool() -> Value {
                     "target": {"type": "string"},
                     "reference": {"type": "string"},
                     "start": {"type": "string"},
-                    "room": {"type": "string"}
+                    "room": {"type": "string"},
+                    "start_room": {"type": "string"}
                 },
                 "required": ["predicate", "target", "reference"],
                 "additionalProperties": false
@@ -135,6 +139,9 @@ fn spec_of(task: &str, s: Submitted) -> Result<TaskSpec, TaskError> {
         })?
         .noun;
     let start = s.start.as_deref().and_then(ground_text).map(|g| g.noun);
-    let room = s.room.as_deref().and_then(room_of_text);
-    build_spec(task, s.predicate, target, reference, start, room)
+    let rooms = NamedRooms {
+        start: s.start_room.as_deref().and_then(room_of_text),
+        goal: s.room.as_deref().and_then(room_of_text),
+    };
+    build_spec(task, s.predicate, target, reference, start, rooms)
 }

@@ -23,7 +23,7 @@ mod variation;
 
 use serde::{Deserialize, Serialize};
 
-pub use analyse::analyse;
+pub use analyse::{FLOOR, analyse};
 pub use check::{SceneCheck, check_scene, goal_holds};
 pub use variation::prompts;
 
@@ -68,17 +68,43 @@ pub struct TaskSpec {
     pub target_words: Vec<String>,
     /// Where the object should end up: canonical noun ("shelf").
     pub reference: String,
-    /// Where the object starts when the task says ("from the table").
+    /// Where the object starts when the task says ("from the table"); [`FLOOR`] for "from
+    /// the floor".
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub start: Option<String>,
-    /// Room-type keys of the knowledge base that fit, best first.
+    /// Room-type keys of the knowledge base that fit, best first; for a task across rooms,
+    /// the start room's type and the goal room's.
     pub room_types: Vec<String>,
+    /// For a task across rooms ("bring the bottle from the kitchen to the coffee table in the
+    /// living room"): every scene is a house with both rooms, the object starts in one and the
+    /// reference stands in the other.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub across: Option<AcrossRooms>,
     /// Objects every scene must hold (the target, the reference, the start if named).
     pub required: Vec<String>,
     /// The initial-state constraint, in words: the goal must not hold at the start.
     pub initial_state: String,
     /// What the scenes may vary.
     pub flexible: Vec<String>,
+}
+
+/// The two rooms of a task across rooms (room-type keys of the knowledge base).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct AcrossRooms {
+    /// Where the object to move starts ("kitchen").
+    pub start_room: String,
+    /// Where the reference stands ("living_room").
+    pub goal_room: String,
+}
+
+/// The rooms a task names, by role: the object's ("from the kitchen", "the mug in the
+/// kitchen") and the reference's ("to the coffee table in the living room").
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct NamedRooms {
+    /// The room the object starts in.
+    pub start: Option<String>,
+    /// The room the reference stands in.
+    pub goal: Option<String>,
 }
 
 /// One scene prompt written for a task.
@@ -90,7 +116,7 @@ pub struct ScenePrompt {
     pub prompt: String,
     /// Seed for `generate`.
     pub seed: u64,
-    /// Room type the prompt asks for.
+    /// Room type the prompt asks for (`house` for a task across rooms).
     pub room_type: String,
 }
 

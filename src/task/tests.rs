@@ -110,3 +110,84 @@ fn prompts_vary_and_each_reads_back_to_the_required_objects_apart() {
         assert!(mug.is_some(), "{}", p.prompt);
     }
 }
+
+#[test]
+fn a_task_across_rooms_names_both_rooms_and_writes_houses_that_keep_them_apart() {
+    let t =
+        analyse("bring the water bottle from the kitchen to the coffee table in the living room")
+            .expect("reads");
+    assert_eq!(
+        (t.predicate, t.target.as_str(), t.reference.as_str()),
+        (Predicate::On, "water bottle", "coffee table")
+    );
+    let across = t.across.clone().expect("a task across rooms");
+    assert_eq!(
+        (across.start_room.as_str(), across.goal_room.as_str()),
+        ("kitchen", "living_room")
+    );
+    assert_eq!(t.start, None, "a room is no start object");
+    // One room named, or the same room twice: no house.
+    for one in [
+        "put the red apple into the fruit bowl in the kitchen",
+        "take the mug from the kitchen to the shelf in the kitchen",
+    ] {
+        let t = analyse(one).expect("reads");
+        assert_eq!(
+            (t.across.as_ref(), t.room_types.as_slice()),
+            (None, &["kitchen".to_string()][..]),
+            "{one}"
+        );
+    }
+    for p in prompts(&t, 4, 3) {
+        assert_eq!(p.room_type, "house");
+        let brief = crate::layout::brief::read(&p.prompt);
+        let types: Vec<&str> = brief.rooms.iter().map(|r| r.room_type.as_str()).collect();
+        assert_eq!(types, ["kitchen", "living_room"], "{}", p.prompt);
+        // The bottle is said of the kitchen, the coffee table of the living room.
+        let said = |i: usize, noun: &str| {
+            let text = brief.room_prompt(i);
+            crate::prompt::read(&text)
+                .mentions
+                .iter()
+                .any(|m| !m.negated && m.category == noun)
+        };
+        assert!(
+            said(0, "water bottle") && !said(0, "coffee table"),
+            "{}",
+            p.prompt
+        );
+        assert!(
+            said(1, "coffee table") && !said(1, "water bottle"),
+            "{}",
+            p.prompt
+        );
+    }
+}
+
+#[test]
+fn an_object_from_the_floor_starts_on_the_floor_in_every_prompt() {
+    let t = analyse("pick a cup from the floor and place it in the sink").expect("reads");
+    assert_eq!(t.start.as_deref(), Some(FLOOR));
+    assert_eq!(
+        t.required,
+        ["cup", "sink"],
+        "the floor is no object to require"
+    );
+    for p in prompts(&t, 4, 1) {
+        assert!(p.prompt.contains("cup on the floor"), "{}", p.prompt);
+        let reading = crate::prompt::read(&p.prompt);
+        let cup = reading
+            .mentions
+            .iter()
+            .find(|m| m.category == "cup")
+            .expect("a cup");
+        assert!(
+            cup.relations
+                .iter()
+                .any(|r| r.target == crate::prompt::relations::Target::Floor),
+            "{}: {:?}",
+            p.prompt,
+            cup.relations
+        );
+    }
+}

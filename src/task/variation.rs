@@ -5,7 +5,7 @@ use rand::rngs::ChaCha8Rng;
 use rand::{RngExt, SeedableRng};
 
 use super::analyse::words;
-use super::{ScenePrompt, TaskSpec};
+use super::{FLOOR, ScenePrompt, TaskSpec};
 use crate::knowledge::knowledge;
 use crate::knowledge::rooms::RoomType;
 use crate::words::{Support, lexicon};
@@ -75,10 +75,65 @@ fn is_small(noun: &str) -> bool {
         .is_some_and(|e| e.support == Support::Surface)
 }
 
+/// `k` (drawn from `tasks.json`'s `extra_furniture`) more pieces of `room`'s furniture, none
+/// of them in `used`.
+fn extras(rng: &mut ChaCha8Rng, room: Option<&RoomType>, used: &[String]) -> Vec<String> {
+    let Some(r) = room else {
+        return Vec::new();
+    };
+    let mut pool: Vec<&str> = r
+        .furniture
+        .iter()
+        .map(|i| i.noun.as_str())
+        .filter(|n| !used.iter().any(|u| u == n))
+        .collect();
+    // Distinct nouns, so the draw below always ends.
+    pool.sort_unstable();
+    pool.dedup();
+    let [lo, hi] = words().extra_furniture;
+    let k = rng.random_range(lo..=hi.max(lo)).min(pool.len());
+    let mut chosen: Vec<&str> = Vec::new();
+    while chosen.len() < k {
+        if let Some(p) = pick(rng, &pool)
+            && !chosen.contains(p)
+        {
+            chosen.push(p);
+        }
+    }
+    chosen.into_iter().map(with_article).collect()
+}
+
+/// "a, b, and c".
+fn listed(mut parts: Vec<String>) -> String {
+    let last = parts.pop().unwrap_or_default();
+    if parts.is_empty() {
+        last
+    } else {
+        format!("{}, and {last}", parts.join(", "))
+    }
+}
+
+fn capitalised(text: &str) -> String {
+    let mut chars = text.chars();
+    chars
+        .next()
+        .map_or_else(String::new, |c| c.to_uppercase().chain(chars).collect())
+}
+
+/// A room type's word in prompts ("living room").
+fn room_word(room_type: &str) -> String {
+    knowledge()
+        .room(room_type)
+        .and_then(|r| r.words.first().cloned())
+        .unwrap_or_else(|| room_type.replace('_', " "))
+}
+
 /// `n` scene prompts for `spec`, deterministic in `seed`. Every prompt names the object to
 /// move on something other than the reference, and the reference; the room type cycles over
 /// the fitting types; style, size, colour, the start (when the task names none) and one or two
-/// more pieces of the room type's furniture vary.
+/// more pieces of the room type's furniture vary. For a task across rooms every prompt is a
+/// house with the two rooms, the object and its start in the one, the reference in the other
+/// (no size word: "small" would shrink both rooms).
 pub fn prompts(spec: &TaskSpec, n: usize, seed: u64) -> Vec<ScenePrompt> {
     let w = words();
     let kb = knowledge();
@@ -86,11 +141,14 @@ pub fn prompts(spec: &TaskSpec, n: usize, seed: u64) -> Vec<ScenePrompt> {
         .map(|i| {
             let mut rng =
                 ChaCha8Rng::seed_from_u64(seed.wrapping_mul(0x9E37_79B9).wrapping_add(i as u64));
-            let room_type = spec.room_types[i % spec.room_types.len().max(1)].clone();
-            let room = kb.room(&room_type);
-            let room_word = room
-                .and_then(|r| r.words.first().cloned())
-                .unwrap_or_else(|| room_type.replace('_', " "));
+            let (start_type, goal_type) = match &spec.across {
+                Some(x) => (x.start_room.clone(), x.goal_room.clone()),
+                None => {
+                    let t = spec.room_types[i % spec.room_types.len().max(1)].clone();
+                    (t.clone(), t)
+                }
+            };
+            let (start_room, goal_room) = (kb.room(&start_type), kb.room(&goal_type));
             let style = pick(&mut rng, &w.styles).cloned().unwrap_or_default();
             let size = pick(&mut rng, &w.sizes).cloned().unwrap_or_default();
             let target = if spec.target_words.is_empty() && colourable(&spec.target) {
@@ -102,7 +160,7 @@ pub fn prompts(spec: &TaskSpec, n: usize, seed: u64) -> Vec<ScenePrompt> {
                     .to_string()
             };
             let mut used: Vec<String> = vec![spec.reference.clone()];
-            let start = match (&spec.start, room) {
+            let start = match (&spec.start, start_room) {
                 (Some(s), _) => s.clone(),
                 (None, Some(r)) => pick(&mut rng, &holders(r, &spec.target, &used))
                     .map_or_else(|| "table".to_string(), |s| s.to_string()),
@@ -110,7 +168,7 @@ pub fn prompts(spec: &TaskSpec, n: usize, seed: u64) -> Vec<ScenePrompt> {
             };
             used.push(start.clone());
             let reference = if is_small(&spec.reference) {
-                let host = room
+                let host = goal_room
                     .and_then(|r| {
                         pick(&mut rng, &holders(r, &spec.reference, &used)).map(|s| s.to_string())
                     })
@@ -125,57 +183,56 @@ pub fn prompts(spec: &TaskSpec, n: usize, seed: u64) -> Vec<ScenePrompt> {
             } else {
                 with_article(&spec.reference)
             };
-            let extras: Vec<String> = match room {
-                Some(r) => {
-                    let mut pool: Vec<&str> = r
-                        .furniture
-                        .iter()
-                        .map(|i| i.noun.as_str())
-                        .filter(|n| !used.iter().any(|u| u == n))
-                        .collect();
-                    // Distinct nouns, so the draw below always ends.
-                    pool.sort_unstable();
-                    pool.dedup();
-                    let [lo, hi] = w.extra_furniture;
-                    let k = rng.random_range(lo..=hi.max(lo)).min(pool.len());
-                    let mut chosen: Vec<&str> = Vec::new();
-                    while chosen.len() < k {
-                        if let Some(p) = pick(&mut rng, &pool)
-                            && !chosen.contains(p)
-                        {
-                            chosen.push(p);
-                        }
-                    }
-                    chosen.into_iter().map(with_article).collect()
-                }
-                None => Vec::new(),
+            let start_part = if start == FLOOR {
+                format!("{} on the floor", with_article(&target))
+            } else {
+                format!(
+                    "{} with {} on it",
+                    with_article(&start),
+                    with_article(&target)
+                )
             };
-            let opening = [size.as_str(), style.as_str(), room_word.as_str()]
+            let (prompt, room_type) = if spec.across.is_some() {
+                let mut start_parts = vec![start_part];
+                start_parts.extend(extras(&mut rng, start_room, &used));
+                let mut goal_parts = vec![reference];
+                goal_parts.extend(extras(&mut rng, goal_room, &used));
+                let (a, b) = (room_word(&start_type), room_word(&goal_type));
+                let opening = [style.as_str(), "house"]
+                    .iter()
+                    .filter(|s| !s.is_empty())
+                    .copied()
+                    .collect::<Vec<_>>()
+                    .join(" ");
+                let prompt = format!(
+                    "{} with {} and {}. The {a} has {}. The {b} has {}.",
+                    capitalised(&with_article(&opening)),
+                    with_article(&a),
+                    with_article(&b),
+                    listed(start_parts),
+                    listed(goal_parts)
+                );
+                (prompt, "house".to_string())
+            } else {
+                let mut parts = vec![reference, start_part];
+                parts.extend(extras(&mut rng, start_room, &used));
+                let opening = [
+                    size.as_str(),
+                    style.as_str(),
+                    room_word(&start_type).as_str(),
+                ]
                 .iter()
                 .filter(|s| !s.is_empty())
                 .copied()
                 .collect::<Vec<_>>()
                 .join(" ");
-            let mut parts = vec![
-                reference,
-                format!(
-                    "{} with {} on it",
-                    with_article(&start),
-                    with_article(&target)
-                ),
-            ];
-            parts.extend(extras);
-            let last = parts.pop().unwrap_or_default();
-            let list = if parts.is_empty() {
-                last
-            } else {
-                format!("{}, and {last}", parts.join(", "))
+                let prompt = format!(
+                    "{} with {}.",
+                    capitalised(&with_article(&opening)),
+                    listed(parts)
+                );
+                (prompt, start_type)
             };
-            let opening = with_article(&opening);
-            let mut prompt = format!("{opening} with {list}.");
-            if let Some(first) = prompt.get(..1) {
-                prompt = first.to_uppercase() + &prompt[1..];
-            }
             ScenePrompt {
                 id: format!("scene_{i:03}"),
                 prompt,

@@ -189,24 +189,18 @@ pub(super) fn fit_in(
             slot
         }
         None => {
-            // Raster from the back-left corner (the parent's -Y side: a desk's monitor and a
-            // counter's appliances stand at the back), rows along u.
-            let step = 0.01;
-            let mut found = None;
-            let mut v = -sv + hv;
-            'scan: while v <= sv - hv + 1e-9 {
-                let mut u = -su + hu;
-                while u <= su - hu + 1e-9 {
-                    let slot = make(u, v);
-                    if free(&slot) {
-                        found = Some(slot);
-                        break 'scan;
-                    }
-                    u += step;
-                }
-                v += step;
-            }
-            found.ok_or_else(|| format!("no free spot left on {}", s.key()))?
+            // First the slot nearest the surface's centre at least EDGE_MARGIN from its
+            // edges: a named item stands where a reader expects it, away from a shelf's panels
+            // (a gripper's body needs room beside an item, and an item at a table's edge is
+            // one nudge from the floor). Then, so that a tight fit still succeeds, a raster of
+            // the whole surface from the back-left corner (the parent's -Y side: a desk's
+            // monitor and a counter's appliances stand at the back), rows along u.
+            let fits_margin = hu + EDGE_MARGIN <= su && hv + EDGE_MARGIN <= sv;
+            fits_margin
+                .then(|| nearest_centre(su - EDGE_MARGIN, sv - EDGE_MARGIN, hu, hv, &free, make))
+                .flatten()
+                .or_else(|| raster(su, sv, hu, hv, |u, v| Some(make(u, v)).filter(&free)))
+                .ok_or_else(|| format!("no free spot left on {}", s.key()))?
         }
     };
     // Model origin so that the rotated bounds' centre sits at (u, v) and the bottom on the surface.
@@ -219,6 +213,55 @@ pub(super) fn fit_in(
         *rot,
     ));
     Ok((s.world_from_surface().compose(&local), slot))
+}
+
+/// How far the first raster pass keeps an item from its surface's edges (m).
+const EDGE_MARGIN: f64 = 0.035;
+
+/// The free slot nearest the centre on a 1 cm grid of centres over the rectangle
+/// `[-au, au] x [-av, av]` shrunk by the item's half-extents.
+fn nearest_centre(
+    au: f64,
+    av: f64,
+    hu: f64,
+    hv: f64,
+    free: impl Fn(&Slot) -> bool,
+    make: impl Fn(f64, f64) -> Slot,
+) -> Option<Slot> {
+    const STEP: f64 = 0.01;
+    let steps = |a: f64, h: f64| ((a - h).max(0.0) / STEP + 1e-9).floor() as i64;
+    let (nu, nv) = (steps(au, hu), steps(av, hv));
+    let mut grid: Vec<(i64, i64)> = (-nu..=nu)
+        .flat_map(|i| (-nv..=nv).map(move |j| (i, j)))
+        .collect();
+    grid.sort_by_key(|&(i, j)| (i * i + j * j, j, i));
+    grid.into_iter()
+        .map(|(i, j)| make(i as f64 * STEP, j as f64 * STEP))
+        .find(|slot| free(slot))
+}
+
+/// The first slot `try_at` accepts, scanning centres at 1 cm steps over the rectangle
+/// `[-au, au] x [-av, av]` shrunk by the item's half-extents, rows along u from -v.
+fn raster(
+    au: f64,
+    av: f64,
+    hu: f64,
+    hv: f64,
+    mut try_at: impl FnMut(f64, f64) -> Option<Slot>,
+) -> Option<Slot> {
+    const STEP: f64 = 0.01;
+    let mut v = -av + hv;
+    while v <= av - hv + 1e-9 {
+        let mut u = -au + hu;
+        while u <= au - hu + 1e-9 {
+            if let Some(slot) = try_at(u, v) {
+                return Some(slot);
+            }
+            u += STEP;
+        }
+        v += STEP;
+    }
+    None
 }
 
 /// Adds a manipuland resting on `support`.
@@ -244,6 +287,38 @@ pub(super) fn add_item(
 mod tests {
     use super::*;
     use crate::assets::procedural::{AssetRequest, build};
+
+    #[test]
+    fn the_first_pass_takes_the_free_slot_nearest_the_centre_and_the_raster_the_back_left() {
+        let make = |u: f64, v: f64| Slot {
+            u,
+            v,
+            hu: 0.05,
+            hv: 0.05,
+        };
+        let inside =
+            |s: &Slot, a: f64| s.u.abs() + s.hu <= a + 1e-9 && s.v.abs() + s.hv <= a + 1e-9;
+        let empty = |s: &Slot| inside(s, 0.3);
+        let centre = nearest_centre(0.3, 0.3, 0.05, 0.05, empty, make).expect("room");
+        assert!(centre.u.abs() < 1e-9 && centre.v.abs() < 1e-9, "{centre:?}");
+        // Something at the centre: the nearest free slot touches it, inside the rectangle.
+        let blocker = make(0.0, 0.0);
+        let around = |s: &Slot| inside(s, 0.3) && !blocker.overlaps(s);
+        let next = nearest_centre(0.3, 0.3, 0.05, 0.05, around, make).expect("room");
+        let d = next.u.abs().max(next.v.abs());
+        assert!((0.099..=0.111).contains(&d), "{next:?}");
+        let first = raster(0.3, 0.3, 0.05, 0.05, |u, v| {
+            Some(make(u, v)).filter(&around)
+        })
+        .expect("room");
+        assert!(
+            (first.u + 0.25).abs() < 1e-9 && (first.v + 0.25).abs() < 1e-9,
+            "{first:?}"
+        );
+        // Nothing fits: both say so.
+        assert!(nearest_centre(0.3, 0.3, 0.05, 0.05, |_: &Slot| false, make).is_none());
+        assert!(raster(0.3, 0.3, 0.05, 0.05, |_, _| None).is_none());
+    }
 
     #[test]
     fn rotated_bounds_of_a_laid_flat_book() {
