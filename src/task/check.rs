@@ -5,8 +5,8 @@ use nalgebra::Point3;
 use serde::{Deserialize, Serialize};
 
 use super::{FLOOR, NEAR_M, Predicate, TaskSpec};
-use crate::eval::requirements::object_matches;
-use crate::scene::{Scene, SceneObject, Support};
+use crate::eval::requirements::{normalize_label, object_matches};
+use crate::scene::{ObjectKind, Scene, SceneObject, Support};
 
 /// The check of one scene against a task.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -144,10 +144,20 @@ pub fn check_scene(spec: &TaskSpec, scene: &Scene) -> SceneCheck {
         })
         .collect();
     let mut targets = matching(&spec.target);
+    // Best candidates first: the task's own noun before narrower kinds that share its head
+    // (a "can" before a "trash can"), and small objects before furniture.
+    let rank = |o: &SceneObject, noun: &str| {
+        (
+            normalize_label(&o.category) != normalize_label(noun),
+            o.kind != ObjectKind::Manipuland,
+        )
+    };
+    targets.sort_by_key(|o| rank(o, &spec.target));
     if spec.start.as_deref() == Some(FLOOR) {
         targets.retain(|o| matches!(o.support, Support::Floor { .. }));
     }
-    let references = matching(&spec.reference);
+    let mut references = matching(&spec.reference);
+    references.sort_by_key(|o| rank(o, &spec.reference));
     if targets.is_empty() && missing.is_empty() {
         missing.push(format!("{} on the floor", spec.target));
     }
@@ -178,7 +188,7 @@ mod tests {
     use std::collections::BTreeMap;
 
     use super::*;
-    use crate::scene::{ObjectKind, Pose, Room};
+    use crate::scene::{Pose, Room};
     use crate::task::analyse;
 
     /// A kitchen and a living room, a table in each, a mug on each table.
@@ -252,5 +262,31 @@ mod tests {
         let check = check_scene(&spec, &scene);
         assert_eq!(check.missing, ["table in the living room"]);
         assert!(!check.passed());
+    }
+
+    #[test]
+    fn the_tasks_own_noun_ranks_before_a_narrower_kind_and_small_objects_before_furniture() {
+        let spec = analyse("put the can on the table").expect("reads");
+        let mut scene = two_room_scene();
+        let mut bin = scene.objects[0].clone();
+        bin.id = "trash_can_0".into();
+        bin.category = "trash_can".into();
+        let mut can = scene.objects[1].clone();
+        can.id = "can_0".into();
+        can.category = "can".into();
+        // Away from the table, so the goal does not hold for it.
+        can.support = Support::Floor {
+            room: can.room.clone(),
+        };
+        scene.objects.insert(0, bin);
+        scene.objects.push(can);
+        let check = check_scene(&spec, &scene);
+        assert_eq!(
+            check.targets.first().map(String::as_str),
+            Some("can_0"),
+            "{:?}",
+            check.targets
+        );
+        assert_eq!(check.bindable.first().map(String::as_str), Some("can_0"));
     }
 }
