@@ -5,7 +5,8 @@ Place candidates (object body poses X_WO, the object upright as it started, turn
 world z axis by 0, +90, -90 or 180 degrees, its lowest point PLACE_GAP_M above the surface):
 - "on": the reference's top. From scene.json when the reference's asset lists surfaces (the
   one named "top", else the highest): a GRID_M grid over the surface rectangle inset by the
-  object's footprint radius + 2 cm. Otherwise from the reference's collision surface: the
+  object's footprint radius + 2 cm (a surface too small for that, such as a plate's flat
+  well: its centre alone, when the reference itself is wider than the footprint). Otherwise from the reference's collision surface: the
   upward-facing points (normal z > 0.95) within 1 cm of the highest one, a grid over them,
   kept where the object's footprint is supported (every footprint point within 2 cm of a top
   point). Centres first; positions within MIN_MOVE_M of the object's start are skipped (the
@@ -147,7 +148,12 @@ def on_positions(spec, task, plant, plant_context, reference_cloud, radius, star
         X_WR = _body_pose(plant, plant_context, task.reference, surface.get("link"))
         half = np.array(surface["size"][:2]) / 2 - (radius + 0.02)
         if np.any(half < 0):
-            return []
+            # A small surface (a plate's flat well): the object centred on it, overhanging the
+            # surface but not the reference itself.
+            extent = reference_cloud.p[:, :2].max(axis=0) - reference_cloud.p[:, :2].min(axis=0)
+            if np.any(extent / 2 < radius + 0.005):
+                return []
+            half = np.maximum(half, 0.0)
         centre = np.array(surface["center"], dtype=float)
         grid = _grid(-half, half)
         grid = grid[np.argsort(np.linalg.norm(grid, axis=1), kind="stable")]

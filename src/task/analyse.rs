@@ -190,7 +190,7 @@ pub fn analyse(task: &str) -> Result<TaskSpec, TaskError> {
     })?;
     // Then, in any order: a `from` phrase, the relation and its reference, rooms. A room in a
     // `from` phrase or before the relation is the object's; one after it is the reference's.
-    let (mut start, mut relation) = (None, None);
+    let (mut start, mut relation, mut reference_on) = (None, None, None);
     let mut rooms = NamedRooms::default();
     let mut i = target_end;
     while i < tokens.len() {
@@ -219,6 +219,9 @@ pub fn analyse(task: &str) -> Result<TaskSpec, TaskError> {
                     phrase: phrase.join(" "),
                 })?;
                 relation = Some((pred, reference.noun));
+            } else if pred == Predicate::On && reference_on.is_none() {
+                // "on a plate on the dining table": where the reference stands.
+                reference_on = ground(phrase).map(|g| g.noun);
             }
             i = end.max(i + 1);
         } else {
@@ -228,7 +231,17 @@ pub fn analyse(task: &str) -> Result<TaskSpec, TaskError> {
     let Some((predicate, reference)) = relation else {
         return Err(TaskError::NoRelation(task.trim().to_string()));
     };
-    build_spec(task, predicate, target, reference, start, rooms)
+    build_spec(
+        task,
+        predicate,
+        target,
+        Reference {
+            noun: reference,
+            on: reference_on,
+        },
+        start,
+        rooms,
+    )
 }
 
 /// Grounds a free-text noun phrase ("red apple"), as the LLM reader hands them in.
@@ -241,16 +254,28 @@ pub(super) fn room_of_text(text: &str) -> Option<String> {
     room_named(&split(text))
 }
 
+/// The reference as a task names it: its noun and what it stands on, when the task says
+/// ("a plate on the dining table").
+pub(super) struct Reference {
+    pub(super) noun: String,
+    pub(super) on: Option<String>,
+}
+
 /// The spec of a read task: rooms, required objects, the initial-state constraint and what
 /// may vary.
 pub(super) fn build_spec(
     task: &str,
     predicate: Predicate,
     target: Grounded,
-    reference: String,
+    reference: Reference,
     start: Option<String>,
     rooms: NamedRooms,
 ) -> Result<TaskSpec, TaskError> {
+    let Reference {
+        noun: reference,
+        on: reference_on,
+    } = reference;
+    let reference_on = reference_on.filter(|h| *h != reference && *h != target.noun);
     if reference == target.noun {
         return Err(TaskError::SameObject(reference));
     }
@@ -265,10 +290,15 @@ pub(super) fn build_spec(
     let room_types = match (&across, rooms.start.or(rooms.goal)) {
         (Some(x), _) => vec![x.start_room.clone(), x.goal_room.clone()],
         (None, Some(r)) => vec![r],
-        (None, None) => fitting_rooms(&target.noun, &reference, start.as_deref()),
+        (None, None) => fitting_rooms(
+            &target.noun,
+            &reference,
+            start.as_deref().or(reference_on.as_deref()),
+        ),
     };
     let mut required = vec![target.noun.clone(), reference.clone()];
     required.extend(start.clone().filter(|s| s != FLOOR));
+    required.extend(reference_on.clone().filter(|h| !required.contains(h)));
     let initial_state = format!(
         "no {} is {} a {} at the start",
         target.noun,
@@ -297,6 +327,7 @@ pub(super) fn build_spec(
         target: target.noun,
         target_words: target.words,
         reference,
+        reference_on,
         start,
         room_types,
         across,

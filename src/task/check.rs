@@ -144,6 +144,16 @@ pub fn check_scene(spec: &TaskSpec, scene: &Scene) -> SceneCheck {
         })
         .collect();
     let mut targets = matching(&spec.target);
+    // Where the task says the object starts, or the reference stands: on or in such an object.
+    let on_a = |o: &SceneObject, host: &str| {
+        matching(host)
+            .iter()
+            .any(|h| h.id != o.id && supported_by(scene, o, h))
+    };
+    let start_object = spec.start.as_deref().filter(|s| *s != FLOOR);
+    if let Some(start) = start_object {
+        targets.retain(|o| on_a(o, start));
+    }
     // Best candidates first: the task's own noun before narrower kinds that share its head
     // (a "can" before a "trash can"), and small objects before furniture.
     let rank = |o: &SceneObject, noun: &str| {
@@ -157,9 +167,21 @@ pub fn check_scene(spec: &TaskSpec, scene: &Scene) -> SceneCheck {
         targets.retain(|o| matches!(o.support, Support::Floor { .. }));
     }
     let mut references = matching(&spec.reference);
+    if let Some(host) = &spec.reference_on {
+        references.retain(|o| on_a(o, host));
+    }
     references.sort_by_key(|o| rank(o, &spec.reference));
-    if targets.is_empty() && missing.is_empty() {
-        missing.push(format!("{} on the floor", spec.target));
+    if missing.is_empty() {
+        // Everything is there, but not where the task says.
+        if targets.is_empty() {
+            missing.push(match start_object {
+                Some(start) => format!("{} on or in the {start}", spec.target),
+                None => format!("{} on the floor", spec.target),
+            });
+        }
+        if let (true, Some(host)) = (references.is_empty(), &spec.reference_on) {
+            missing.push(format!("{} on the {host}", spec.reference));
+        }
     }
     let mut goal_holds_for = Vec::new();
     for t in &targets {
@@ -262,6 +284,30 @@ mod tests {
         let check = check_scene(&spec, &scene);
         assert_eq!(check.missing, ["table in the living room"]);
         assert!(!check.passed());
+    }
+
+    #[test]
+    fn the_object_must_start_where_the_task_says_and_the_reference_stand_where_it_says() {
+        let scene = two_room_scene();
+        // The mugs stand on tables; the task wants one from a shelf.
+        let spec = analyse("move the mug from the shelf to the table").expect("reads");
+        let mut with_shelf = scene.clone();
+        let mut shelf = with_shelf.objects[0].clone();
+        shelf.id = "shelf_0".into();
+        shelf.category = "shelf".into();
+        with_shelf.objects.push(shelf);
+        let check = check_scene(&spec, &with_shelf);
+        assert_eq!(check.missing, ["mug on or in the shelf"]);
+        // The reference must stand on what the task says.
+        let spec = analyse("put the table on a mug on the shelf").expect("reads");
+        assert_eq!(spec.reference_on.as_deref(), Some("shelf"));
+        let check = check_scene(&spec, &with_shelf);
+        assert!(check.references.is_empty(), "{:?}", check.references);
+        assert!(
+            check.missing.iter().any(|m| m == "mug on the shelf"),
+            "{:?}",
+            check.missing
+        );
     }
 
     #[test]

@@ -8,7 +8,7 @@ use serde::Deserialize;
 use serde_json::{Value, json};
 
 use super::NamedRooms;
-use super::analyse::{build_spec, ground_text, room_of_text};
+use super::analyse::{Reference, build_spec, ground_text, room_of_text};
 use super::{Predicate, TaskError, TaskSpec};
 use crate::agents::llm::transport::{CallMeta, Transport, assistant_message};
 
@@ -29,6 +29,8 @@ struct Submitted {
     room: Option<String>,
     #[serde(default)]
     start_room: Option<String>,
+    #[serde(default)]
+    reference_on: Option<String>,
 }
 
 fn submit_tool() -> Value {
@@ -45,7 +47,8 @@ fn submit_tool() -> Value {
                     "reference": {"type": "string"},
                     "start": {"type": "string"},
                     "room": {"type": "string"},
-                    "start_room": {"type": "string"}
+                    "start_room": {"type": "string"},
+                    "reference_on": {"type": "string"}
                 },
                 "required": ["predicate", "target", "reference"],
                 "additionalProperties": false
@@ -132,12 +135,19 @@ fn spec_of(task: &str, s: Submitted) -> Result<TaskSpec, TaskError> {
         role: "the object to move",
         phrase: s.target.clone(),
     })?;
-    let reference = ground_text(&s.reference)
-        .ok_or_else(|| TaskError::NotAnObject {
-            role: "the reference",
-            phrase: s.reference.clone(),
-        })?
-        .noun;
+    let reference = Reference {
+        noun: ground_text(&s.reference)
+            .ok_or_else(|| TaskError::NotAnObject {
+                role: "the reference",
+                phrase: s.reference.clone(),
+            })?
+            .noun,
+        on: s
+            .reference_on
+            .as_deref()
+            .and_then(ground_text)
+            .map(|g| g.noun),
+    };
     let start = s.start.as_deref().and_then(ground_text).map(|g| g.noun);
     let rooms = NamedRooms {
         start: s.start_room.as_deref().and_then(room_of_text),

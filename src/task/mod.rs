@@ -68,6 +68,9 @@ pub struct TaskSpec {
     pub target_words: Vec<String>,
     /// Where the object should end up: canonical noun ("shelf").
     pub reference: String,
+    /// What the reference stands on when the task says ("a plate on the dining table").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference_on: Option<String>,
     /// Where the object starts when the task says ("from the table"); [`FLOOR`] for "from
     /// the floor".
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -191,3 +191,22 @@ fn an_object_from_the_floor_starts_on_the_floor_in_every_prompt() {
         );
     }
 }
+
+#[test]
+fn where_the_reference_stands_is_required_and_written_into_every_prompt() {
+    let t = analyse("pick a fruit from the fruit bowl and place it on a plate on the dining table")
+        .expect("reads");
+    assert_eq!(
+        (t.target.as_str(), t.reference.as_str(), t.start.as_deref()),
+        ("fruit", "plate", Some("fruit bowl"))
+    );
+    assert_eq!(t.reference_on.as_deref(), Some("dining table"));
+    assert_eq!(t.required, ["fruit", "plate", "fruit bowl", "dining table"]);
+    for p in prompts(&t, 4, 2) {
+        assert!(
+            p.prompt.contains("a dining table with a plate on it"),
+            "{}",
+            p.prompt
+        );
+    }
+}

@@ -167,7 +167,14 @@ pub fn prompts(spec: &TaskSpec, n: usize, seed: u64) -> Vec<ScenePrompt> {
                 (None, None) => "table".to_string(),
             };
             used.push(start.clone());
-            let reference = if is_small(&spec.reference) {
+            let reference = if let Some(host) = &spec.reference_on {
+                used.push(host.clone());
+                format!(
+                    "{} with {} on it",
+                    with_article(host),
+                    with_article(&spec.reference)
+                )
+            } else if is_small(&spec.reference) {
                 let host = goal_room
                     .and_then(|r| {
                         pick(&mut rng, &holders(r, &spec.reference, &used)).map(|s| s.to_string())
