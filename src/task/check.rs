@@ -105,6 +105,24 @@ pub fn goal_holds(spec: &TaskSpec, scene: &Scene, t: &SceneObject, r: &SceneObje
     }
 }
 
+/// Highest floor covering (a rug, a mat) that still counts as the floor, metres.
+const FLOOR_COVERING_M: f64 = 0.03;
+
+/// Whether `o` rests on the floor, or on a floor covering that does.
+fn on_floor(scene: &Scene, o: &SceneObject) -> bool {
+    match &o.support {
+        Support::Floor { .. } => true,
+        Support::Object { parent, .. } => scene.object(parent).is_some_and(|p| {
+            matches!(p.support, Support::Floor { .. })
+                && scene
+                    .assets
+                    .get(&p.asset)
+                    .is_some_and(|a| a.bounds[1][2] - a.bounds[0][2] <= FLOOR_COVERING_M)
+        }),
+        _ => false,
+    }
+}
+
 /// Whether `o` stands in a room of type `room_type`.
 fn in_room_of_type(scene: &Scene, o: &SceneObject, room_type: &str) -> bool {
     scene
@@ -164,7 +182,7 @@ pub fn check_scene(spec: &TaskSpec, scene: &Scene) -> SceneCheck {
     };
     targets.sort_by_key(|o| rank(o, &spec.target));
     if spec.start.as_deref() == Some(FLOOR) {
-        targets.retain(|o| matches!(o.support, Support::Floor { .. }));
+        targets.retain(|o| on_floor(scene, o));
     }
     let mut references = matching(&spec.reference);
     if let Some(host) = &spec.reference_on {
@@ -308,6 +326,42 @@ mod tests {
             "{:?}",
             check.missing
         );
+    }
+
+    #[test]
+    fn an_object_on_a_rug_is_on_the_floor_one_on_a_table_is_not() {
+        let spec = analyse("pick a mug from the floor and put it on the table").expect("reads");
+        let mut scene = two_room_scene();
+        // Both mugs stand on tables.
+        assert_eq!(check_scene(&spec, &scene).missing, ["mug on the floor"]);
+        let mut rug = scene.objects[0].clone();
+        rug.id = "rug_0".into();
+        rug.category = "rug".into();
+        rug.asset = "rug_a".into();
+        scene.objects.push(rug);
+        scene.assets.insert(
+            "rug_a".into(),
+            crate::scene::AssetRecord {
+                id: "rug_a".into(),
+                category: "rug".into(),
+                sdf: "assets/rug_a/model.sdf".into(),
+                root_link: "body".into(),
+                links: vec!["body".into()],
+                joints: vec![],
+                bounds: [[-1.0, -0.7, 0.0], [1.0, 0.7, 0.012]],
+                mass: 2.0,
+                collision_pieces: 1,
+                material: "fabric".into(),
+                surfaces: vec![],
+                provenance: serde_json::json!({}),
+            },
+        );
+        if let Support::Object { parent, .. } = &mut scene.objects[1].support {
+            *parent = "rug_0".into();
+        }
+        let check = check_scene(&spec, &scene);
+        assert!(check.passed(), "{}", check.reason());
+        assert_eq!(check.targets, ["mug_0"]);
     }
 
     #[test]
