@@ -187,3 +187,55 @@ fn dishes_in_the_sink_go_into_its_basin() {
     // The basin is open (not behind the vanity's doors): it is filled first.
     assert!(in_basin >= 3, "{in_basin} objects in the basin");
 }
+
+/// What the prompt puts on a shelf stands at hand height, near the middle of its board, not on
+/// the bottom board pressed into a corner (where no gripper fits beside it).
+#[test]
+fn an_asked_for_item_on_a_shelf_stands_at_hand_height_away_from_the_panels() {
+    let prompt = "A storage room with a shelf with a red can on it, and a chair.";
+    let (state, _) = build_scene(prompt, 0, "shelf_can", &Backend::Builtin).unwrap();
+    let scene = &state.scene;
+    let can = scene
+        .objects
+        .iter()
+        .find(|o| o.category == "can")
+        .expect("a can");
+    let Support::Object { parent, surface } = &can.support else {
+        panic!("the can stands on {:?}", can.support);
+    };
+    let shelf = scene.object(parent).expect("its shelf");
+    let asset = &scene.assets[&shelf.asset];
+    let handy = |z: f64| (z - 0.9).abs();
+    let on = asset
+        .surfaces
+        .iter()
+        .find(|s| s.id == *surface)
+        .expect("its surface");
+    for s in &asset.surfaces {
+        assert!(
+            handy(on.center[2]) <= handy(s.center[2]) + 1e-9,
+            "the can is on {} at {:.2} m, {} at {:.2} m is nearer hand height",
+            on.id,
+            on.center[2],
+            s.id,
+            s.center[2]
+        );
+    }
+    // In the surface's frame: the can's centre at least 3.5 cm plus its half-width from
+    // every edge.
+    let [lo, hi] = scene.assets[&can.asset].bounds;
+    let centre = nalgebra::Point3::new((lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0, 0.0);
+    let t = shelf
+        .world_from_object
+        .inverse()
+        .transform_point(&can.world_from_object.transform_point(&centre));
+    let half = (hi[0] - lo[0]).max(hi[1] - lo[1]) / 2.0;
+    let (du, dv) = (
+        on.size[0] / 2.0 - (t.x - on.center[0]).abs(),
+        on.size[1] / 2.0 - (t.y - on.center[1]).abs(),
+    );
+    assert!(
+        du >= half + 0.03 && dv >= half + 0.03,
+        "the can is {du:.3} / {dv:.3} m from the board's edges (half-width {half:.3})"
+    );
+}
