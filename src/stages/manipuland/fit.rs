@@ -4,7 +4,7 @@
 
 use nalgebra::{UnitQuaternion, Vector3};
 
-use super::surface::{SurfaceRef, intrusions, is_cavity};
+use super::surface::{SurfaceRef, intrusions, is_cavity, is_receptacle};
 use crate::scene::{AssetRecord, ObjectKind, Pose, Support};
 use crate::stages::{RoutedAsset, StageState};
 use crate::state::SceneState;
@@ -138,6 +138,18 @@ pub(super) fn fit(
     fit_in(&state.scene, s, rec, rot, at, extra)
 }
 
+/// [`fit`] packing from the back-left corner even on an empty surface (a pile's patch and its
+/// layers, which must stay together).
+pub(super) fn fit_packed(
+    state: &StageState,
+    s: &SurfaceRef,
+    rec: &AssetRecord,
+    rot: &UnitQuaternion<f64>,
+    extra: &[Slot],
+) -> Result<(Pose, Slot), String> {
+    fit_with(&state.scene, s, rec, rot, None, extra, false)
+}
+
 /// [`fit`] on a scene outside a stage (placing an object again after post-processing).
 pub(super) fn fit_in(
     scene: &SceneState,
@@ -146,6 +158,18 @@ pub(super) fn fit_in(
     rot: &UnitQuaternion<f64>,
     at: Option<(f64, f64)>,
     extra: &[Slot],
+) -> Result<(Pose, Slot), String> {
+    fit_with(scene, s, rec, rot, at, extra, true)
+}
+
+fn fit_with(
+    scene: &SceneState,
+    s: &SurfaceRef,
+    rec: &AssetRecord,
+    rot: &UnitQuaternion<f64>,
+    at: Option<(f64, f64)>,
+    extra: &[Slot],
+    centre_first: bool,
 ) -> Result<(Pose, Slot), String> {
     let (lo, hi) = rotated_bounds(rec, rot);
     let (hu, hv, h) = ((hi[0] - lo[0]) / 2.0, (hi[1] - lo[1]) / 2.0, hi[2] - lo[2]);
@@ -189,14 +213,16 @@ pub(super) fn fit_in(
             slot
         }
         None => {
-            // First the slot nearest the surface's centre at least EDGE_MARGIN from its
-            // edges: a named item stands where a reader expects it, away from a shelf's panels
-            // (a gripper's body needs room beside an item, and an item at a table's edge is
-            // one nudge from the floor). Then, so that a tight fit still succeeds, a raster of
-            // the whole surface from the back-left corner (the parent's -Y side: a desk's
-            // monitor and a counter's appliances stand at the back), rows along u.
+            // The first item on an open surface stands nearest its centre at least
+            // EDGE_MARGIN from its edges: where a reader expects "a shelf with a can on it",
+            // away from a shelf's panels (a gripper's body needs room beside an item) and
+            // from a table's edge (one nudge from the floor). Otherwise, and when that fails,
+            // a raster from the back-left corner packs the surface (the parent's -Y side: a
+            // desk's monitor and a counter's appliances stand at the back), rows along u; a
+            // basin or a bowl is packed from the start.
+            let first = centre_first && taken.is_empty() && !is_receptacle(s);
             let fits_margin = hu + EDGE_MARGIN <= su && hv + EDGE_MARGIN <= sv;
-            fits_margin
+            (first && fits_margin)
                 .then(|| nearest_centre(su - EDGE_MARGIN, sv - EDGE_MARGIN, hu, hv, &free, make))
                 .flatten()
                 .or_else(|| raster(su, sv, hu, hv, |u, v| Some(make(u, v)).filter(&free)))

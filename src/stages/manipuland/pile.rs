@@ -4,7 +4,7 @@
 
 use nalgebra::UnitQuaternion;
 
-use super::fit::{GAP, LIFT, Slot, add_item, fit, item_rotation, rotated_bounds};
+use super::fit::{GAP, LIFT, Slot, add_item, fit_packed, item_rotation, rotated_bounds};
 use super::stack::{stack_on, stack_pitch};
 use super::surface::{SurfaceRef, find_surface, is_cavity};
 use super::tools::{GroupArgs, PlaceResult, result_for};
@@ -96,7 +96,7 @@ pub(super) fn place_layers(
             let attempt = if layer_z > 0.0 {
                 fit_ignoring_surface(state, &layer, &rec, &rot, lower_free)
             } else {
-                fit(state, &layer, &rec, &rot, None, &extra).ok()
+                fit_packed(state, &layer, &rec, &rot, &extra).ok()
             };
             let Some((pose, slot)) = attempt else { break };
             let pose = Pose::from_xyz(0.0, 0.0, layer_z).compose(&pose);
@@ -130,7 +130,7 @@ pub(super) fn place_layers(
     while !cavity && (ids.len() as u32) < count {
         let k = ids.len() as f64;
         let rot = item_rotation(37.0 * k, false);
-        let Ok((pose, slot)) = fit(state, s, &rec, &rot, None, &bottom) else {
+        let Ok((pose, slot)) = fit_packed(state, s, &rec, &rot, &bottom) else {
             break;
         };
         ids.push(add_item(state, routed, pose, &s.parent.id, &s.surface.id));
@@ -158,7 +158,7 @@ fn pile_patch(
     patch.bounds[1][0] = side / 2.0;
     patch.bounds[0][1] = -side / 2.0;
     patch.bounds[1][1] = side / 2.0;
-    let (_, slot) = fit(state, s, &patch, &UnitQuaternion::identity(), None, &[]).ok()?;
+    let (_, slot) = fit_packed(state, s, &patch, &UnitQuaternion::identity(), &[]).ok()?;
     Some(sub_region(&s.surface, slot.u, slot.v, [side, side]))
 }
 

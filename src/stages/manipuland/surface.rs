@@ -203,6 +203,11 @@ pub(super) fn is_cavity(s: &SurfaceRef) -> bool {
     s.surface.id.starts_with("inside")
 }
 
+/// Whether things go into the surface rather than onto it: a cavity or a sink's basin.
+pub(super) fn is_receptacle(s: &SurfaceRef) -> bool {
+    is_cavity(s) || s.surface.id == "basin"
+}
+
 /// All surfaces of the objects in the room (or of one object).
 pub fn surfaces(state: &StageState, object: Option<&str>) -> Vec<SurfaceRef> {
     state
