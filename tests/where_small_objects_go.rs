@@ -239,3 +239,33 @@ fn an_asked_for_item_on_a_shelf_stands_at_hand_height_away_from_the_panels() {
         "the can is {du:.3} / {dv:.3} m from the board's edges (half-width {half:.3})"
     );
 }
+
+/// The usual clutter keeps out of a sink's basin (a towel in the sink is no arrangement, and a
+/// task "put the cup in the sink" needs it free); what the prompt puts there goes in.
+#[test]
+fn the_usual_clutter_leaves_a_sinks_basin_free() {
+    for (seed, prompt) in [
+        (
+            0,
+            "A large bathroom with a sink, a bathtub, a toilet and a plant.",
+        ),
+        (
+            1,
+            "A kitchen with a sink, a counter, a stove and a refrigerator.",
+        ),
+    ] {
+        let (state, _) = build_scene(prompt, seed, "sink_free", &Backend::Builtin).unwrap();
+        let in_basin: Vec<&str> = state
+            .scene
+            .objects
+            .iter()
+            .filter(|o| matches!(&o.support, Support::Object { surface, .. } if surface == "basin"))
+            .map(|o| o.id.as_str())
+            .collect();
+        assert!(in_basin.is_empty(), "{prompt}: {in_basin:?} in a basin");
+        assert!(
+            state.scene.objects.iter().any(|o| o.category == "sink"),
+            "{prompt}: no sink"
+        );
+    }
+}

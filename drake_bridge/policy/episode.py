@@ -78,6 +78,10 @@ from drake_bridge.sim_plant import pose_json
 MAX_BASES = 6
 MAX_GRASPS = 8
 MAX_PLACES = 8
+#: Place positions checked for room for the object (in preference order), and how many of
+#: the clear ones, nearest the reference's edge first, are tried for a second base pose.
+CHECKED_PLACES = 1000
+DRIVE_PLACES = 3 * MAX_PLACES
 #: Scene padding of the straight descend to the grasp (m).
 DESCEND_PADDING_M = 0.002
 #: Commanded finger speed while closing or opening (m/s, each finger; the SDF allows 0.21).
@@ -271,7 +275,7 @@ class Episode:
                                              self.X_WO0.translation())
             elif pred == "inside":
                 out = placement.inside_positions(self.spec, self.task, a.plant,
-                                                 a.plant_context, self.reference_cloud)
+                                                 a.plant_context, self.reference_cloud, radius)
             else:
                 lo = self.reference_cloud.p.min(axis=0)
                 hi = self.reference_cloud.p.max(axis=0)
@@ -279,7 +283,18 @@ class Episode:
                 out = placement.near_positions(self.reference_cloud, env, radius)
         if not out:
             raise PolicyFailure("ik", f"no place location {pred} {self.task.reference}")
-        self.positions = out
+        # Only positions where the object fits at some yaw, so that a cluttered middle of a
+        # table does not use up the MAX_PLACES tried per base.
+        with self.clock.phase("perception"):
+            clear = [position for position in out[:CHECKED_PLACES]
+                     if any(placement.object_clear(self.query, self.shape,
+                                                   self.shape.pose_at(position, yaw),
+                                                   self.target_ids)
+                            for yaw in placement.YAWS_RAD)]
+        if not clear:
+            raise PolicyFailure("ik", f"no place location {pred} {self.task.reference} is clear "
+                                f"of the objects already there ({len(out)} tried)")
+        self.positions = clear
 
     # ---------------------------------------------------------------- configurations
     def solve_pick(self, base):
@@ -359,8 +374,15 @@ class Episode:
             raise PolicyFailure("ik", f"no grasp of {self.task.target} solves IK from "
                                 f"{min(len(bases), MAX_BASES)} base poses")
         base, pick = first_pick
-        # A second base pose for placing, around each place position in turn.
-        for position in self.positions[:MAX_PLACES]:
+        # A second base pose for placing, around each place position in turn: those nearest
+        # the reference's edge first (a robot reaches the middle of a table with chairs
+        # around it from nowhere).
+        ref_lo = self.reference_cloud.p[:, :2].min(axis=0)
+        ref_hi = self.reference_cloud.p[:, :2].max(axis=0)
+        inset = [min(np.min(p.p_W[:2] - ref_lo), np.min(ref_hi - p.p_W[:2]))
+                 for p in self.positions]
+        by_edge = [self.positions[k] for k in np.argsort(inset, kind="stable")]
+        for position in by_edge[:DRIVE_PLACES]:
             with self.clock.phase("base"):
                 ref_xy = self.reference_cloud.p[:, :2].mean(axis=0)
                 bases2 = placement.base_candidates(

@@ -11,8 +11,8 @@ world z axis by 0, +90, -90 or 180 degrees, its lowest point PLACE_GAP_M above t
   kept where the object's footprint is supported (every footprint point within 2 cm of a top
   point). Centres first; positions within MIN_MOVE_M of the object's start are skipped (the
   object should visibly move even when it already stands on the reference).
-- "inside": the container's inside. scene.json's surface named "inside" when present (its
-  centre), else the upward-facing points of the reference below its rim (2 cm under its top)
+- "inside": the container's inside. scene.json's surface named "inside" (or a sink's "basin")
+  when present, a grid over it as for "on", else the upward-facing points of the reference below its rim (2 cm under its top)
   near its horizontal centre: their highest z is the inner floor.
 - "near": on the surface the reference stands on (the upward-facing scene points at the
   reference's lowest z, within 1.5 cm), with a gap between the object's and the reference's
@@ -141,25 +141,30 @@ def _body_pose(plant, plant_context, instance, link):
     return plant.EvalBodyPoseInWorld(plant_context, body)
 
 
+def _surface_positions(plant, plant_context, reference, surface, radius, reference_cloud):
+    """A GRID_M grid over a scene.json surface of the reference inset by the object's footprint
+    radius + 2 cm, centres first (a surface too small for that, such as a plate's flat well:
+    its centre alone, when the reference itself is wider than the footprint)."""
+    X_WR = _body_pose(plant, plant_context, reference, surface.get("link"))
+    half = np.array(surface["size"][:2]) / 2 - (radius + 0.02)
+    if np.any(half < 0):
+        extent = reference_cloud.p[:, :2].max(axis=0) - reference_cloud.p[:, :2].min(axis=0)
+        if np.any(extent / 2 < radius + 0.005):
+            return []
+        half = np.maximum(half, 0.0)
+    centre = np.array(surface["center"], dtype=float)
+    grid = _grid(-half, half)
+    grid = grid[np.argsort(np.linalg.norm(grid, axis=1), kind="stable")]
+    local = np.column_stack([grid + centre[:2], np.full(len(grid), centre[2])])
+    return [PlacePosition(p, float(p[2])) for p in X_WR.multiply(local.T).T]
+
+
 def on_positions(spec, task, plant, plant_context, reference_cloud, radius, start_p_W):
     """Place positions on the reference's top (see module doc), best first."""
     surface = _json_surface(spec, task.reference, "top")
     if surface is not None:
-        X_WR = _body_pose(plant, plant_context, task.reference, surface.get("link"))
-        half = np.array(surface["size"][:2]) / 2 - (radius + 0.02)
-        if np.any(half < 0):
-            # A small surface (a plate's flat well): the object centred on it, overhanging the
-            # surface but not the reference itself.
-            extent = reference_cloud.p[:, :2].max(axis=0) - reference_cloud.p[:, :2].min(axis=0)
-            if np.any(extent / 2 < radius + 0.005):
-                return []
-            half = np.maximum(half, 0.0)
-        centre = np.array(surface["center"], dtype=float)
-        grid = _grid(-half, half)
-        grid = grid[np.argsort(np.linalg.norm(grid, axis=1), kind="stable")]
-        local = np.column_stack([grid + centre[:2], np.full(len(grid), centre[2])])
-        points = X_WR.multiply(local.T).T
-        out = [PlacePosition(p, float(p[2])) for p in points]
+        out = _surface_positions(plant, plant_context, task.reference, surface, radius,
+                                 reference_cloud)
     else:
         up = reference_cloud.n[:, 2] > UP_NORMAL_Z
         if not np.any(up):
@@ -176,13 +181,13 @@ def on_positions(spec, task, plant, plant_context, reference_cloud, radius, star
     return [c for c in out if np.linalg.norm(c.p_W[:2] - start_p_W[:2]) >= MIN_MOVE_M]
 
 
-def inside_positions(spec, task, plant, plant_context, reference_cloud):
-    """The place position inside the container (see module doc), or []."""
-    surface = _json_surface(spec, task.reference, "inside")
+def inside_positions(spec, task, plant, plant_context, reference_cloud, radius):
+    """Place positions inside the container (see module doc), best first, or []."""
+    surface = (_json_surface(spec, task.reference, "inside")
+               or _json_surface(spec, task.reference, "basin"))
     if surface is not None:
-        X_WR = _body_pose(plant, plant_context, task.reference, surface.get("link"))
-        p = X_WR.multiply(np.array(surface["center"], dtype=float))
-        return [PlacePosition(p, float(p[2]))]
+        return _surface_positions(plant, plant_context, task.reference, surface, radius,
+                                  reference_cloud)
     P, n = reference_cloud.p, reference_cloud.n
     top_z = float(P[:, 2].max())
     centre = (P[:, :2].max(axis=0) + P[:, :2].min(axis=0)) / 2

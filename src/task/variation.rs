@@ -103,13 +103,13 @@ fn extras(rng: &mut ChaCha8Rng, room: Option<&RoomType>, used: &[String]) -> Vec
     chosen.into_iter().map(with_article).collect()
 }
 
-/// "a, b, and c".
+/// "a", "a and b", "a, b, and c".
 fn listed(mut parts: Vec<String>) -> String {
     let last = parts.pop().unwrap_or_default();
-    if parts.is_empty() {
-        last
-    } else {
-        format!("{}, and {last}", parts.join(", "))
+    match parts.len() {
+        0 => last,
+        1 => format!("{} and {last}", parts[0]),
+        _ => format!("{}, and {last}", parts.join(", ")),
     }
 }
 

@@ -34,28 +34,27 @@ const HANDY_HEIGHT_M: f64 = 0.9;
 /// The entity's surface keys in two tiers: the open ones (tops, open shelves), then the
 /// enclosed ones (behind doors, in drawers), which get what the open ones cannot hold: a
 /// kitchen counter's appliances stand on its top, not in its cupboards. The usual clutter
-/// (`asked` false) fills each tier bottom-up, and a wet basin comes last in its tier: shampoo
-/// stands on a bathtub's rim, not in the tub. What the prompt asks for goes to the surface
+/// (`asked` false) fills each tier bottom-up and never a wet basin: shampoo stands on a
+/// bathtub's rim, not in the tub, and a sink stays free to put things in. What the prompt asks for goes to the surface
 /// nearest HANDY_HEIGHT_M first ("a shelf with a can on it": the can at hand height, not on
 /// the bottom board).
 fn surface_tiers(state: &StageState, entity: &str, asked: bool) -> [Vec<String>; 2] {
-    let mut list: Vec<(bool, (bool, f64), String)> = surfaces(state, Some(entity))
+    let mut list: Vec<(bool, f64, String)> = surfaces(state, Some(entity))
         .iter()
-        .map(|s| {
-            // What the prompt put in a sink goes into its basin, the lowest open surface;
-            // the usual clutter keeps to the counter.
-            let basin = !asked && s.surface.id == "basin";
+        .filter_map(|s| {
+            // What the prompt put in a sink goes into its basin first; the usual clutter
+            // keeps to the counter.
             let z = s.surface.center[2];
             let order = match (asked, s.surface.id == "basin") {
                 (true, true) => f64::NEG_INFINITY,
                 (true, false) => (z - HANDY_HEIGHT_M).abs(),
-                (false, _) => z,
+                (false, true) => return None,
+                (false, false) => z,
             };
-            (s.enclosed(state), (basin, order), s.key())
+            Some((s.enclosed(state), order, s.key()))
         })
         .collect();
-
-    list.sort_by(|a, b| a.1.0.cmp(&b.1.0).then(a.1.1.total_cmp(&b.1.1)));
+    list.sort_by(|a, b| a.1.total_cmp(&b.1));
     let tier = |enclosed: bool| {
         list.iter()
             .filter(|(e, _, _)| *e == enclosed)
