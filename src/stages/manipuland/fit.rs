@@ -223,7 +223,7 @@ fn fit_with(
             let first = centre_first && taken.is_empty() && !is_receptacle(s);
             let fits_margin = hu + EDGE_MARGIN <= su && hv + EDGE_MARGIN <= sv;
             (first && fits_margin)
-                .then(|| nearest_centre(su - EDGE_MARGIN, sv - EDGE_MARGIN, hu, hv, &free, make))
+                .then(|| nearest_centre(su - EDGE_MARGIN, sv - EDGE_MARGIN, hu, hv, free, make))
                 .flatten()
                 .or_else(|| raster(su, sv, hu, hv, |u, v| Some(make(u, v)).filter(&free)))
                 .ok_or_else(|| format!("no free spot left on {}", s.key()))?
