@@ -137,7 +137,7 @@ fn in_room_of_type(scene: &Scene, o: &SceneObject, room_type: &str) -> bool {
 pub fn check_scene(spec: &TaskSpec, scene: &Scene) -> SceneCheck {
     let room_of = |label: &str| -> Option<&str> {
         let x = spec.across.as_ref()?;
-        if label == spec.reference {
+        if label == spec.reference || spec.reference_on.as_deref() == Some(label) {
             Some(x.goal_room.as_str())
         } else {
             Some(x.start_room.as_str())
