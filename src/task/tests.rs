@@ -143,6 +143,12 @@ fn a_task_across_rooms_names_both_rooms_and_writes_houses_that_keep_them_apart()
         let brief = crate::layout::brief::read(&p.prompt);
         let types: Vec<&str> = brief.rooms.iter().map(|r| r.room_type.as_str()).collect();
         assert_eq!(types, ["kitchen", "living_room"], "{}", p.prompt);
+        assert!(
+            brief.rooms.iter().all(|r| r.size_scale > 1.0),
+            "{}: {:?}",
+            p.prompt,
+            brief.rooms.iter().map(|r| r.size_scale).collect::<Vec<_>>()
+        );
         // The bottle is said of the kitchen, the coffee table of the living room.
         let said = |i: usize, noun: &str| {
             let text = brief.room_prompt(i);

@@ -132,8 +132,8 @@ fn room_word(room_type: &str) -> String {
 /// move on something other than the reference, and the reference; the room type cycles over
 /// the fitting types; style, size, colour, the start (when the task names none) and one or two
 /// more pieces of the room type's furniture vary. For a task across rooms every prompt is a
-/// house with the two rooms, the object and its start in the one, the reference in the other
-/// (no size word: "small" would shrink both rooms).
+/// house with the two rooms, both large, the object and its start in the one, the reference in
+/// the other.
 pub fn prompts(spec: &TaskSpec, n: usize, seed: u64) -> Vec<ScenePrompt> {
     let w = words();
     let kb = knowledge();
@@ -211,11 +211,11 @@ pub fn prompts(spec: &TaskSpec, n: usize, seed: u64) -> Vec<ScenePrompt> {
                     .copied()
                     .collect::<Vec<_>>()
                     .join(" ");
+                // Large rooms: a mobile robot needs floor in front of what it reaches for, and
+                // the rooms of a house come out smaller than a room of its own.
                 let prompt = format!(
-                    "{} with {} and {}. The {a} has {}. The {b} has {}.",
+                    "{} with a large {a} and a large {b}. The {a} has {}. The {b} has {}.",
                     capitalised(&with_article(&opening)),
-                    with_article(&a),
-                    with_article(&b),
                     listed(start_parts),
                     listed(goal_parts)
                 );
