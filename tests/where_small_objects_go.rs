@@ -259,10 +259,22 @@ fn the_usual_clutter_leaves_a_sinks_basin_free() {
             .scene
             .objects
             .iter()
-            .filter(|o| matches!(&o.support, Support::Object { surface, .. } if surface == "basin"))
+            .filter(|o| match &o.support {
+                Support::Object { parent, surface } => {
+                    surface == "basin"
+                        && state
+                            .scene
+                            .object(parent)
+                            .is_some_and(|p| p.category == "sink")
+                }
+                _ => false,
+            })
             .map(|o| o.id.as_str())
             .collect();
-        assert!(in_basin.is_empty(), "{prompt}: {in_basin:?} in a basin");
+        assert!(
+            in_basin.is_empty(),
+            "{prompt}: {in_basin:?} in a sink's basin"
+        );
         assert!(
             state.scene.objects.iter().any(|o| o.category == "sink"),
             "{prompt}: no sink"

@@ -30,12 +30,15 @@ fn count_on(state: &StageState, entity: &str, want: &Want) -> u32 {
 
 /// Height above the entity's base at which asked-for items are put first (m): counter height.
 const HANDY_HEIGHT_M: f64 = 0.9;
+/// Added to a basin's height in the usual clutter's order, so that it comes after every other
+/// open surface of its entity (m).
+const BASIN_LAST_M: f64 = 100.0;
 
 /// The entity's surface keys in two tiers: the open ones (tops, open shelves), then the
 /// enclosed ones (behind doors, in drawers), which get what the open ones cannot hold: a
 /// kitchen counter's appliances stand on its top, not in its cupboards. The usual clutter
-/// (`asked` false) fills each tier bottom-up and never a wet basin: shampoo stands on a
-/// bathtub's rim, not in the tub, and a sink stays free to put things in. What the prompt asks for goes to the surface
+/// (`asked` false) fills each tier bottom-up, a wet basin last (shampoo stands on a bathtub's
+/// rim, not in the tub) and never a sink's: a sink stays free to put things in. What the prompt asks for goes to the surface
 /// nearest HANDY_HEIGHT_M first ("a shelf with a can on it": the can at hand height, not on
 /// the bottom board).
 fn surface_tiers(state: &StageState, entity: &str, asked: bool) -> [Vec<String>; 2] {
@@ -48,7 +51,9 @@ fn surface_tiers(state: &StageState, entity: &str, asked: bool) -> [Vec<String>;
             let order = match (asked, s.surface.id == "basin") {
                 (true, true) => f64::NEG_INFINITY,
                 (true, false) => (z - HANDY_HEIGHT_M).abs(),
-                (false, true) => return None,
+                (false, true) if s.parent.category == "sink" => return None,
+                // A tub's basin comes last, after its rim.
+                (false, true) => z + BASIN_LAST_M,
                 (false, false) => z,
             };
             Some((s.enclosed(state), order, s.key()))
