@@ -113,6 +113,16 @@ fn listed(mut parts: Vec<String>) -> String {
     }
 }
 
+/// The non-empty words, joined by spaces.
+fn spaced(words: &[&str]) -> String {
+    words
+        .iter()
+        .filter(|w| !w.is_empty())
+        .copied()
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 fn capitalised(text: &str) -> String {
     let mut chars = text.chars();
     chars
@@ -205,12 +215,7 @@ pub fn prompts(spec: &TaskSpec, n: usize, seed: u64) -> Vec<ScenePrompt> {
                 let mut goal_parts = vec![reference];
                 goal_parts.extend(extras(&mut rng, goal_room, &used));
                 let (a, b) = (room_word(&start_type), room_word(&goal_type));
-                let opening = [style.as_str(), "house"]
-                    .iter()
-                    .filter(|s| !s.is_empty())
-                    .copied()
-                    .collect::<Vec<_>>()
-                    .join(" ");
+                let opening = spaced(&[style.as_str(), "house"]);
                 // Large rooms: a mobile robot needs floor in front of what it reaches for, and
                 // the rooms of a house come out smaller than a room of its own.
                 let prompt = format!(
@@ -223,16 +228,11 @@ pub fn prompts(spec: &TaskSpec, n: usize, seed: u64) -> Vec<ScenePrompt> {
             } else {
                 let mut parts = vec![reference, start_part];
                 parts.extend(extras(&mut rng, start_room, &used));
-                let opening = [
+                let opening = spaced(&[
                     size.as_str(),
                     style.as_str(),
                     room_word(&start_type).as_str(),
-                ]
-                .iter()
-                .filter(|s| !s.is_empty())
-                .copied()
-                .collect::<Vec<_>>()
-                .join(" ");
+                ]);
                 let prompt = format!(
                     "{} with {}.",
                     capitalised(&with_article(&opening)),
