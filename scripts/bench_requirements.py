@@ -25,7 +25,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def generate(bin_path, prompt, out, log):
+def generate(bin_path, prompt, out, log, extra=()):
     """Runs `generate` once; its exit code and time are kept in OUT/<id>.rc ("rc seconds")."""
     rc_file = out + ".rc"
     if os.path.exists(rc_file):
@@ -34,7 +34,7 @@ def generate(bin_path, prompt, out, log):
     start = time.time()
     with open(log, "w") as f:
         rc = subprocess.call(
-            [bin_path, "generate", prompt, "--out", out, "--no-render", "--export", "none"],
+            [bin_path, "generate", prompt, "--out", out, "--no-render", "--export", "none", *extra],
             stdout=f,
             stderr=subprocess.STDOUT,
             env={**os.environ, "SCENESMITH_HOME": ROOT},
@@ -84,7 +84,15 @@ def bench_args(doc, extra=lambda ap: None):
 
 
 def main():
-    args, want = bench_args(__doc__)
+    args, want = bench_args(
+        __doc__,
+        lambda ap: ap.add_argument(
+            "--no-stb",
+            action="store_true",
+            help="pass --no-stb to generate: the scene is the same, only metrics.json lacks STB",
+        ),
+    )
+    extra = ["--no-stb"] if args.no_stb else []
     rows = []
     totals = {"objects": [0, 0], "absent": [0, 0], "rooms": [0, 0], "refused": [0, 0]}
     with open(args.prompts) as f:
@@ -96,12 +104,12 @@ def main():
         log = os.path.join(args.out, e["id"] + ".log")
         secs = None
         if e["kind"] == "refuse":
-            rc, secs = generate(args.bin, e["prompt"], out, log)
+            rc, secs = generate(args.bin, e["prompt"], out, log, extra)
             totals["refused"][1] += 1
             totals["refused"][0] += int(rc == 2)
             rows.append((e["id"], "refuse", f"exit {rc}", "", "", secs))
             continue
-        rc, secs = generate(args.bin, e["prompt"], out, log)
+        rc, secs = generate(args.bin, e["prompt"], out, log, extra)
         if not os.path.exists(os.path.join(out, "scene.json")):
             # A failed run meets nothing: its requirements count, unmet.
             rows.append((e["id"], e["kind"], f"generate exit {rc}", "", "", secs))

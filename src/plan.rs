@@ -374,11 +374,14 @@ fn covers(lex: &Lexicon, a: &str, b: &str) -> bool {
     is_kind(a, b) || is_kind(b, a)
 }
 
-/// Appliances, electronics and lamps: one per supporting piece unless the prompt asks for more.
+/// Appliances, electronics, lamps, mirrors and clocks: one per supporting piece unless the
+/// prompt asks for more (a vanity table grows more brushes, not a dozen hand mirrors).
 pub(crate) fn one_per_parent(lex: &Lexicon, noun: &str) -> bool {
-    ["appliance", "electronics", "lamp"]
+    ["appliance", "electronics", "lamp", "mirror", "clock"]
         .iter()
-        .any(|kind| covers(lex, noun, kind))
+        .any(|kind| {
+            covers(lex, noun, kind) || noun.strip_suffix(kind).is_some_and(|r| r.ends_with(' '))
+        })
 }
 
 fn is_seat(lex: &Lexicon, noun: &str) -> bool {

@@ -70,7 +70,9 @@ pub(crate) fn run_generate(cli_json: bool, opts: GenerateOptions) -> anyhow::Res
             }
         }
         for noun in &summary.unknown_nouns {
-            eprintln!("  note: no asset generator knows {noun:?}; it was left out");
+            eprintln!(
+                "  note: no asset generator knows {noun:?}; a generic stand-in shape carries its name"
+            );
         }
         for line in scenesmith::prompt::report::summary_lines(&summary.nouns) {
             eprintln!("  {line}");

@@ -168,6 +168,16 @@ fn object_name(description: &str, category: &str) -> Option<String> {
     (plain && differs && (2..=5).contains(&words.len())).then(|| words.join(" "))
 }
 
+/// Whether a thing of support class `own` may be placed by the stage of `stage` when the plan
+/// puts it there: a small thing standing on the floor (a basket, a crate), or a floor thing
+/// small enough for a piece of furniture (the surface's own fit check decides).
+fn crosses(own: SupportClass, stage: SupportClass) -> bool {
+    matches!(
+        (own, stage),
+        (SupportClass::Surface, SupportClass::Floor) | (SupportClass::Floor, SupportClass::Surface)
+    )
+}
+
 /// The state a placement stage's tools work on: the scene, the room (and supporting entity)
 /// in focus, and what the room should contain.
 #[derive(Debug, Clone)]
@@ -195,6 +205,19 @@ impl StageState {
             || crate::assets::router::naming::object_is(scene, &want.noun, o)
     }
 
+    /// The plan's noun for `description` among the things this stage places.
+    fn planned_noun(&self, description: &str) -> Option<String> {
+        let same = |w: &&plan::Want| w.description.eq_ignore_ascii_case(description.trim());
+        let wants: Vec<&plan::Want> = match self.kind {
+            StageKind::Layout => Vec::new(),
+            StageKind::Furniture => self.plan.furniture.iter().collect(),
+            StageKind::Wall => self.plan.wall.iter().collect(),
+            StageKind::Ceiling => self.plan.ceiling.iter().collect(),
+            StageKind::Manipuland => self.plan.surfaces.iter().flat_map(|g| &g.items).collect(),
+        };
+        wants.into_iter().find(same).map(|w| w.noun.clone())
+    }
+
     /// Builds (or reuses) the asset for `description` through the asset router (attributes
     /// such as "red oak" choose materials; an unknown noun gets a generic shape of the stage's
     /// support class, or an external mesh when one is configured), refusing objects of another
@@ -210,6 +233,8 @@ impl StageState {
                 .any(|c| procedural::prior(c).is_some_and(|p| p.support == want))
         };
         let mut candidates = router::parse::main_categories(description);
+        // The object keeps the words it was asked for by as its name, whatever it is built as.
+        let asked = description.to_string();
         let mut description = description.to_string();
         // A kind that rests elsewhere has a sibling for this stage ("storage bins" the prompt
         // puts on the floor are floor bins): build that one.
@@ -226,22 +251,38 @@ impl StageState {
             candidates = router::parse::main_categories(&description);
         }
         let description = description.as_str();
-        let category = candidates.first().copied();
-        if let (Some(category), Some(want)) = (category, self.kind.support())
-            && let Some(prior) = procedural::prior(category)
-            && !for_stage(&candidates, want)
-        {
-            return Err(ToolError::failed(format!(
-                "{category} is a {:?} object; place it in the {} stage, not the {} stage",
-                prior.support,
-                stage_for_support(prior.support),
-                self.kind.as_str()
-            )));
-        }
-        let stage = self
+        let mut category = candidates.first().copied();
+        let mut stage = self
             .kind
             .router_stage()
             .ok_or_else(|| ToolError::failed("the layout stage places no objects".to_string()))?;
+        // What the plan calls this description, when the router reads the words as a thing of
+        // another stage: the plan's noun decides ("fume hood": a range hood, not a hood to
+        // wear), and a thing the plan itself puts here stays here (a basket on the floor).
+        let mut planned_as = None;
+        if let (Some(first), Some(want)) = (category, self.kind.support())
+            && let Some(prior) = procedural::prior(first)
+            && !for_stage(&candidates, want)
+        {
+            let noun = self.planned_noun(description);
+            let noun_fits = noun
+                .as_deref()
+                .map(router::parse::main_categories)
+                .filter(|c| for_stage(c, want));
+            if let (Some(noun), Some(c)) = (noun.as_ref(), noun_fits) {
+                category = c.first().copied();
+                planned_as = Some(noun.clone());
+            } else if noun.is_some() && crosses(prior.support, want) {
+                stage = Stage::for_support(prior.support);
+            } else {
+                return Err(ToolError::failed(format!(
+                    "{first} is a {:?} object; place it in the {} stage, not the {} stage",
+                    prior.support,
+                    stage_for_support(prior.support),
+                    self.kind.as_str()
+                )));
+            }
+        }
         // One seed per (scene seed, category, size): identical requests share one asset, so a
         // set of chairs matches.
         let key = format!(
@@ -254,6 +295,7 @@ impl StageState {
         // The router reads the whole description: attributes, compounds ("fruit bowl": a
         // bowl now, its fruit reported as parts to place), unknown nouns.
         let mut request = RouteRequest::new(description, stage, seed);
+        request.category = planned_as;
         request.size = size;
         self.requests += 1;
         let routed = router::route(&request, router_context())
@@ -280,7 +322,7 @@ impl StageState {
         let [lo, hi] = self.scene.scene.assets[&id].bounds;
         Ok(RoutedAsset {
             asset: id,
-            name: object_name(description, &category),
+            name: object_name(&asked, &category),
             category,
             size: [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]],
             notes,

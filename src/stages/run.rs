@@ -283,6 +283,13 @@ fn split_plans(
                 group.parent == "any" || crate::assets::router::naming::names(&group.parent, cat)
             })
             .collect();
+        if hosts.is_empty() {
+            // A narrower kind of the wanted piece ("pillows on the bed": a king bed).
+            hosts = furniture
+                .iter()
+                .filter(|(_, cat)| crate::assets::router::naming::kind_of(&group.parent, cat))
+                .collect();
+        }
         let own_kind = !hosts.is_empty();
         if hosts.is_empty() {
             // Nothing of the wanted kind: any furniture with a surface, tables first.

@@ -22,6 +22,7 @@ pub(super) const GENERATORS: &[(&str, GeneratorFn)] = &[
     ("towel_bar", towel_bar),
     ("projector_screen", projector_screen),
     ("air_conditioner", air_conditioner),
+    ("range_hood", range_hood),
 ];
 
 /// A rectangular frame of bar width `f` around a `w` x `h` panel lying in the wall plane, `t`
@@ -46,10 +47,14 @@ fn frame(
     Ok(())
 }
 
-/// Mirror: a reflective panel in a frame (round in the `round` variant).
+/// Mirror: a reflective panel in a frame (round in the `round` variant; standing on two
+/// feet in the `floor` variant).
 fn mirror(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
     let mut b = body(ctx);
+    if ctx.variant == "floor" {
+        return floor_mirror(b, ctx, [w, d, h]);
+    }
     if ctx.variant == "round" {
         let r = w.min(h) / 2.0;
         b.add_part(
@@ -75,6 +80,39 @@ fn mirror(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     b.add_box(
         [0.0, d * 0.4, h / 2.0],
         [w - 2.0 * f, d * 0.5, h - 2.0 * f],
+        MIRROR,
+    )?;
+    single(b.finish()?, vec![])
+}
+
+/// A full-length mirror on the floor (canonical floor frame: centred in x and y, front +Y):
+/// the framed panel upright over the middle of two feet that run the whole depth, its lower
+/// rail a little above the floor.
+fn floor_mirror(
+    mut b: LinkBuilder,
+    ctx: &GenContext,
+    [w, d, h]: [f64; 3],
+) -> Result<Generated, GeometryError> {
+    let foot = 0.04;
+    let lift = 0.06;
+    let t = 0.03_f64.min(d * 0.5);
+    let f = (w.min(h) * 0.06).clamp(0.025, 0.05);
+    for sx in [-1.0, 1.0] {
+        let x = sx * (w / 2.0 - f / 2.0);
+        b.add_box([x, 0.0, foot / 2.0], [f, d, foot], ctx.accent_color)?;
+        b.add_box(
+            [x, 0.0, (foot + h) / 2.0],
+            [f, t, h - foot],
+            ctx.accent_color,
+        )?;
+    }
+    for z in [lift + f / 2.0, h - f / 2.0] {
+        b.add_box([0.0, 0.0, z], [w - 2.0 * f, t, f], ctx.accent_color)?;
+    }
+    b.density(2500.0);
+    b.add_box(
+        [0.0, 0.0, (lift + h) / 2.0],
+        [w - 2.0 * f, t * 0.5, h - lift - 2.0 * f],
         MIRROR,
     )?;
     single(b.finish()?, vec![])
@@ -108,8 +146,11 @@ fn wall_shelf(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
 /// Wall clock: a round case, a face, hour marks and hands.
 fn wall_clock(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
     let [w, d, h] = ctx.size;
-    let r = w.min(h) / 2.0;
     let mut b = body(ctx);
+    if ctx.variant == "floor" {
+        return longcase_clock(b, ctx, [w, d, h]);
+    }
+    let r = w.min(h) / 2.0;
     b.add_part(
         super::shapes::frustum_mesh([0.0, 0.0, r], [0.0, d, r], r, r * 0.96, 48),
         super::shapes::frustum_piece([0.0, 0.0, r], [0.0, d, r], r, r * 0.96, 16)?,
@@ -140,6 +181,50 @@ fn wall_clock(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         BLACK,
     );
     b.add_detail([0.18 * r, d + 0.003, r], [0.36 * r, 0.001, 0.012], BLACK);
+    single(b.finish()?, vec![])
+}
+
+/// A longcase (grandfather) clock in the floor frame (centred, front +Y): a plinth, a narrow
+/// trunk with a glazed pendulum door and a wider hood whose face looks forward.
+fn longcase_clock(
+    mut b: LinkBuilder,
+    ctx: &GenContext,
+    [w, d, h]: [f64; 3],
+) -> Result<Generated, GeometryError> {
+    // A hollow case with a movement and weights: about 80 kg at the typical size.
+    b.density(320.0);
+    let plinth = h * 0.15;
+    let hood = (w * 1.05).min(h * 0.3);
+    let trunk = h - plinth - hood;
+    b.add_box([0.0, 0.0, plinth / 2.0], [w, d, plinth], ctx.color)?;
+    b.add_box(
+        [0.0, 0.0, plinth + trunk / 2.0],
+        [w * 0.8, d * 0.85, trunk],
+        ctx.color,
+    )?;
+    b.add_box([0.0, 0.0, h - hood / 2.0], [w, d, hood], ctx.color)?;
+    let front = d / 2.0 + 0.001;
+    let r = (w * 0.38).min(hood * 0.4);
+    b.add_detail(
+        [0.0, front, h - hood / 2.0],
+        [2.0 * r, 0.002, 2.0 * r],
+        WHITE,
+    );
+    b.add_detail(
+        [0.0, front, h - hood / 2.0 + r * 0.3],
+        [0.01, 0.003, r * 0.6],
+        BLACK,
+    );
+    b.add_detail(
+        [0.0, d * 0.425 + 0.001, plinth + trunk * 0.55],
+        [w * 0.45, 0.002, trunk * 0.7],
+        shade(ctx.color, 0.5),
+    );
+    b.add_detail(
+        [0.0, d * 0.425 + 0.002, plinth + trunk * 0.3],
+        [w * 0.16, 0.002, w * 0.16],
+        [0.75, 0.6, 0.25],
+    );
     single(b.finish()?, vec![])
 }
 
@@ -472,6 +557,39 @@ fn air_conditioner(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
         [w * 0.35, d + 0.0005, h * 0.6],
         [0.04, 0.001, 0.01],
         [0.2, 0.7, 0.3],
+    );
+    single(b.finish()?, vec![])
+}
+
+/// Range hood: a canopy over the hob (hollow, its filter underneath), a sloped shoulder and a
+/// chimney up the wall.
+fn range_hood(ctx: &mut GenContext) -> Result<Generated, GeometryError> {
+    let [w, d, h] = ctx.size;
+    let mut b = body(ctx);
+    let canopy = (h * 0.15).clamp(0.06, 0.15);
+    let shoulder = (h * 0.15).clamp(0.06, 0.2);
+    // Sheet steel around air: about 20 kg at the typical size.
+    b.density(150.0);
+    b.shell(Some(0.004));
+    b.add_box([0.0, d / 2.0, canopy / 2.0], [w, d, canopy], ctx.color)?;
+    b.add_box(
+        [0.0, d * 0.35, canopy + shoulder / 2.0],
+        [w * 0.85, d * 0.7, shoulder],
+        ctx.color,
+    )?;
+    b.shell(None);
+    let chimney = h - canopy - shoulder;
+    if chimney > 0.02 {
+        b.add_box(
+            [0.0, d * 0.2, canopy + shoulder + chimney / 2.0],
+            [w * 0.35, d * 0.4, chimney],
+            ctx.color,
+        )?;
+    }
+    b.add_detail(
+        [0.0, d * 0.5, 0.0005],
+        [w * 0.8, d * 0.8, 0.001],
+        shade(METAL, 0.5),
     );
     single(b.finish()?, vec![])
 }

@@ -43,10 +43,28 @@ pub fn names(noun: &str, category: &str) -> bool {
             .is_some_and(|u| crate::scene::sanitize_name(&u) == category)
 }
 
+/// True when an object of `category` is a narrower kind of what `noun` names: its name ends
+/// with the noun's category and both are built by the same generator ("king_bed" for "bed",
+/// "coffee_table" for "table"), so a "hand_mirror", built as a picture frame, is no kind of
+/// "mirror". For a plan that names a piece more broadly than the prompt's words built it.
+pub fn kind_of(noun: &str, category: &str) -> bool {
+    let Some(base) = category_of(noun) else {
+        return false;
+    };
+    let generator = |c: &str| procedural::prior(c).map(|p| p.generator.as_str());
+    category
+        .strip_suffix(base)
+        .is_some_and(|rest| rest.ends_with('_'))
+        && generator(base).is_some()
+        && generator(base) == generator(category)
+}
+
 /// True when `o` in `scene` is what `noun` asks for, by its name (the prompt's,
-/// "manicure_table") or by the library category its asset is built as (`table`).
+/// "manicure_table") or by the library category its asset is built as (`table`, or a narrower
+/// kind of it: a `round_rug` is a rug).
 pub fn object_is(scene: &crate::scene::Scene, noun: &str, o: &SceneObject) -> bool {
-    names(noun, &o.category) || names(noun, scene.built_as(o))
+    let built = scene.built_as(o);
+    names(noun, &o.category) || names(noun, built) || kind_of(noun, built)
 }
 
 /// Footprint of an object whose size nobody knows, m².
@@ -59,4 +77,18 @@ pub fn footprint(noun: &str) -> f64 {
         .map_or(UNKNOWN_FOOTPRINT, |p| {
             (p.typical[0] * p.typical[1]).max(1e-4)
         })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::kind_of;
+
+    #[test]
+    fn narrower_kinds_of_the_same_generator() {
+        assert!(kind_of("bed", "king_bed"));
+        assert!(!kind_of("bed", "bed"), "the same category is `names`' case");
+        // Built as a picture frame: no kind of wall mirror.
+        assert!(!kind_of("mirror", "hand_mirror"));
+        assert!(!kind_of("bed", "bedside_table"));
+    }
 }

@@ -10,7 +10,7 @@ use serde_json::{Value, json};
 use crate::agents::{
     AgentCx, AgentError, Critic, Critique, DesignRequest, Designer, Issue, Role, Score,
 };
-use crate::plan::{Arrangement, RoomPlan};
+use crate::plan::{Arrangement, RoomPlan, Want};
 use crate::stages::StageState;
 
 /// Whether a piece of this category is a seat that faces a table (`chair`, `dining_chair`,
@@ -113,10 +113,32 @@ impl BuiltinFurnitureDesigner {
             .collect()
     }
 
+    /// The pieces present that count for `want`: what its noun names, except a piece named
+    /// after another item of the plan (a guest chair is no dental chair, though both are
+    /// built as chairs).
+    fn present_for(state: &StageState, want: &Want, wants: &[Want]) -> Vec<String> {
+        let own = crate::scene::sanitize_name(&want.noun);
+        let others: Vec<String> = wants
+            .iter()
+            .map(|w| crate::scene::sanitize_name(&w.noun))
+            .filter(|n| *n != own)
+            .collect();
+        Self::present(state, &want.noun)
+            .into_iter()
+            .filter(|id| {
+                state.scene.scene.object(id).is_none_or(|o| {
+                    let named = o.name.as_deref().map(crate::scene::sanitize_name);
+                    !others.contains(&o.category)
+                        && named.is_none_or(|n| n == own || !others.contains(&n))
+                })
+            })
+            .collect()
+    }
+
     fn build_plan(state: &mut StageState, cx: &mut AgentCx<'_, StageState>, reverse: bool) {
         let wants = state.plan.furniture.clone();
         for want in &wants {
-            let have = Self::present(state, &want.noun).len() as u32;
+            let have = Self::present_for(state, want, &wants).len() as u32;
             let mut need = want.count.saturating_sub(have);
             if need == 0 {
                 continue;

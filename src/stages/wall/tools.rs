@@ -273,19 +273,31 @@ fn mount(state: &mut StageState, a: MountArgs) -> Result<MountResult, ToolError>
         walls.sort_by(|x, y| free_length(state, y).total_cmp(&free_length(state, x)));
     }
     let mut last = None;
-    for w in &walls {
-        match try_mount(state, &routed, w, a.along_m, a.height_m, None) {
-            Ok(id) => {
-                return Ok(MountResult {
-                    placed: object_info(state, &frame, &id),
-                    notes: routed.notes.clone(),
-                });
+    let mut routed = routed;
+    // When no wall has room at the typical size, smaller versions (down to the category's
+    // minimum, where the router clamps) before giving up: a whiteboard between two windows.
+    for scale in SHRINK_STEPS {
+        if scale < 1.0 {
+            let size = routed.size.map(|v| v * scale);
+            routed = state.route_asset(&a.description, Some(size))?;
+        }
+        for w in &walls {
+            match try_mount(state, &routed, w, a.along_m, a.height_m, None) {
+                Ok(id) => {
+                    return Ok(MountResult {
+                        placed: object_info(state, &frame, &id),
+                        notes: routed.notes.clone(),
+                    });
+                }
+                Err(e) => last = Some(e),
             }
-            Err(e) => last = Some(e),
         }
     }
     Err(last.unwrap_or_else(|| ToolError::failed("no walls")))
 }
+
+/// Sizes a wall object is tried at, as shares of the size before (typical first).
+const SHRINK_STEPS: [f64; 3] = [1.0, 0.75, 0.75];
 
 fn mount_above(state: &mut StageState, a: AboveArgs) -> Result<MountResult, ToolError> {
     let target = state
