@@ -84,15 +84,20 @@ def bench_args(doc, extra=lambda ap: None):
 
 
 def main():
-    args, want = bench_args(
-        __doc__,
-        lambda ap: ap.add_argument(
+    def options(ap):
+        ap.add_argument(
             "--no-stb",
             action="store_true",
             help="pass --no-stb to generate: the scene is the same, only metrics.json lacks STB",
-        ),
-    )
-    extra = ["--no-stb"] if args.no_stb else []
+        )
+        ap.add_argument(
+            "--no-check",
+            action="store_true",
+            help="pass --no-check to generate: no Drake (no settling, no removals), for a quick look",
+        )
+
+    args, want = bench_args(__doc__, options)
+    extra = (["--no-stb"] if args.no_stb else []) + (["--no-check"] if args.no_check else [])
     rows = []
     totals = {"objects": [0, 0], "absent": [0, 0], "rooms": [0, 0], "refused": [0, 0]}
     with open(args.prompts) as f:

@@ -28,7 +28,6 @@ use crate::physics::collision;
 use crate::physics::postprocess::{self, PostProcessOptions, PostProcessReport};
 use crate::physics::{Bridge, BridgeError, BridgePool, CheckSummary, PhysicsError, check_dir};
 
-use crate::plan::plan_room;
 use crate::scene::{ObjectKind, Scene, sanitize_name};
 use crate::stages::checkpoint::{CheckpointStore, DirCheckpoints, NoCheckpoints};
 use crate::stages::run::furnish_room_resumable;
@@ -347,7 +346,7 @@ pub fn build_scene_with(
     let rooms = state.scene.rooms.clone();
     let mut requested: Vec<(String, u32)> = Vec::new();
     for room in &rooms {
-        let plan = plan_room(&layout::stage::room_reading(room, is_house));
+        let plan = layout::spec::room_plan(&room.room_type, &room.prompt, is_house);
         for n in &plan.notes {
             report.notes.push(format!("{}: {n}", room.id));
         }

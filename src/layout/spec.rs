@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use super::brief::HouseBrief;
 use super::knowledge::{self, Role, knowledge};
 use crate::assets::procedural;
-use crate::plan::{Arrangement, RoomPlan, plan_room};
+use crate::plan::{Arrangement, RoomPlan, plan_house_room};
 use crate::prompt;
 use crate::scene::IdAllocator;
 
@@ -220,13 +220,25 @@ fn round1(v: f64) -> f64 {
     (v * 10.0).round() / 10.0
 }
 
-/// The furniture plan of a room prompt, read the way the placement stages will read it.
+/// The furniture plan of a room prompt: the plan the placement stages build and the layout
+/// sizes the room for. In a house the room is typed as the layout typed it, and when its
+/// prompt still names other rooms of the house ("the clinic comprises a waiting room, two
+/// treatment rooms ..."), its contents are those the reader put in the room of that type.
 pub fn room_plan(room_type: &str, room_prompt: &str, is_house: bool) -> RoomPlan {
     let mut reading = prompt::read(room_prompt);
-    if is_house {
-        reading.room_type = room_type.to_string();
+    if !is_house {
+        return plan_house_room(&reading, 0);
     }
-    plan_room(&reading)
+    reading.room_type = room_type.to_string();
+    let i = reading
+        .rooms
+        .iter()
+        .position(|r| r.room_type == room_type)
+        .unwrap_or(0);
+    if let Some(r) = reading.rooms.get_mut(i) {
+        r.room_type = room_type.to_string();
+    }
+    plan_house_room(&reading, i)
 }
 
 /// Builds the house specification of a brief.

@@ -10,7 +10,6 @@ use crate::agents::{
     AgentError, Backend, BuiltinOrchestrator, Critic, Designer, Orchestrator, RunLog, StageConfig,
     StageSpec, StageSummary, run_stage,
 };
-use crate::prompt::Reading;
 use crate::scene::Room;
 
 /// What the layout stage produced.
@@ -120,16 +119,6 @@ pub fn run_layout(
         },
         state,
     })
-}
-
-/// The prompt reading the placement stages of `room` work from: its own prompt, with the
-/// layout's room type (in a house; a one-room prompt keeps the reader's own type).
-pub fn room_reading(room: &Room, is_house: bool) -> Reading {
-    let mut reading = crate::prompt::read(&room.prompt);
-    if is_house {
-        reading.room_type = room.room_type.clone();
-    }
-    reading
 }
 
 #[cfg(test)]

@@ -187,9 +187,16 @@ pub fn from_reading(prompt: &str, reading: &Reading) -> HouseBrief {
     );
     // Sentences about the whole house ("The floors are hardwood throughout.").
     let mut house_wide_texts: Vec<String> = Vec::new();
+    let mut house_wide_raw: Vec<String> = Vec::new();
+    let labels = label_words(&brief.rooms);
     for &(s, e) in sents.iter().skip(1) {
         let toks = tokens(text, s, e);
         if house_wide(&toks) {
+            // A sentence that names rooms ("The clinic comprises a waiting room, two
+            // treatment rooms ...") is the layout's: its materials and style count, but no
+            // room's prompt repeats it.
+            let words: Vec<String> = toks.iter().map(|t| crate::prompt::singular(&t.w)).collect();
+            let names_rooms = !rooms_named(&words, &labels).is_empty();
             let (f, w) = materials_in(&toks);
             brief.floor_material = f.or(brief.floor_material.take());
             brief.wall_material = w.or(brief.wall_material.take());
@@ -200,7 +207,10 @@ pub fn from_reading(prompt: &str, reading: &Reading) -> HouseBrief {
                     .map(|t| t.w.clone()),
             );
             house_wide_texts.push(t.trim_end_matches(['.', '!', '?', ';']).to_string());
-            brief.house_text.push(t);
+            house_wide_raw.push(t.clone());
+            if !names_rooms {
+                brief.house_text.push(t);
+            }
         }
     }
     // Each room's own clauses, as the reader attributed them.
@@ -215,6 +225,16 @@ pub fn from_reading(prompt: &str, reading: &Reading) -> HouseBrief {
             if house_wide_texts.iter().any(|h| h.contains(bare)) {
                 continue;
             }
+            // House-wide sentences inside a longer part are the house's, not the room's.
+            let mut own = part.to_string();
+            for h in &house_wide_raw {
+                own = own.replacen(h.as_str(), " ", 1);
+            }
+            let own = own.split_whitespace().collect::<Vec<_>>().join(" ");
+            let part = own.trim_start_matches(['.', '!', '?', ';', ' ']);
+            if part.is_empty() {
+                continue;
+            }
             let toks = tokens(part, 0, part.len());
             let (f, w) = materials_in(&toks);
             let room = &mut brief.rooms[i];
@@ -227,31 +247,42 @@ pub fn from_reading(prompt: &str, reading: &Reading) -> HouseBrief {
     brief
 }
 
+/// The words of each room's label.
+fn label_words(rooms: &[RoomRequest]) -> Vec<Vec<String>> {
+    rooms
+        .iter()
+        .map(|r| r.label.split(' ').map(str::to_string).collect())
+        .collect()
+}
+
+/// The rooms whose labels a sentence's singular words name, as (word position, room), in
+/// order; each room once.
+fn rooms_named(w: &[String], labels: &[Vec<String>]) -> Vec<(usize, usize)> {
+    let mut found: Vec<(usize, usize)> = Vec::new();
+    for i in 0..w.len() {
+        for (r, l) in labels.iter().enumerate() {
+            if l.is_empty() || i + l.len() > w.len() {
+                continue;
+            }
+            if w[i..i + l.len()] == l[..] && !found.iter().any(|&(_, x)| x == r) {
+                found.push((i, r));
+                break;
+            }
+        }
+    }
+    found.sort();
+    found
+}
+
 /// Pairs of rooms the prompt opens to each other: "an open-plan kitchen and living room",
 /// "the kitchen is open to the dining room", "opens onto the terrace".
 fn open_pairs(text: &str, sents: &[(usize, usize)], rooms: &[RoomRequest]) -> Vec<(usize, usize)> {
     let mut out: Vec<(usize, usize)> = Vec::new();
-    let labels: Vec<Vec<String>> = rooms
-        .iter()
-        .map(|r| r.label.split(' ').map(str::to_string).collect())
-        .collect();
+    let labels = label_words(rooms);
     for &(s, e) in sents {
         let toks = tokens(text, s, e);
         let w: Vec<String> = toks.iter().map(|t| crate::prompt::singular(&t.w)).collect();
-        // Room labels in this sentence, by token position.
-        let mut found: Vec<(usize, usize)> = Vec::new();
-        for i in 0..w.len() {
-            for (r, l) in labels.iter().enumerate() {
-                if l.is_empty() || i + l.len() > w.len() {
-                    continue;
-                }
-                if w[i..i + l.len()] == l[..] && !found.iter().any(|&(_, x)| x == r) {
-                    found.push((i, r));
-                    break;
-                }
-            }
-        }
-        found.sort();
+        let found = rooms_named(&w, &labels);
         let open_word = |i: usize| {
             matches!(
                 toks[i].w.as_str(),
@@ -496,5 +527,60 @@ mod tests {
         let bath = b.rooms.iter().find(|r| r.room_type == "bathroom").unwrap();
         assert_eq!(bath.floor_material.as_deref(), Some("marble"));
         assert_eq!(b.open_pairs, vec![(0, 1)]);
+    }
+
+    /// "Each treatment room has ..." furnishes both treatment rooms' prompts; a sentence that
+    /// lists the rooms is the layout's and no room's prompt repeats it, so every room's plan
+    /// holds its own contents (not the first room's).
+    #[test]
+    fn each_room_sentences_reach_every_such_room_and_room_lists_stay_out() {
+        let prompt = "This physiotherapy clinic is calm and clean. The clinic comprises a waiting \
+                      room, two treatment rooms and a staff room. The waiting room is lined with \
+                      eight padded chairs. Each treatment room has a treatment table and a \
+                      rolling stool. The staff room offers a kettle and a small fridge.";
+        let b = read(prompt);
+        assert_eq!(
+            types(&b),
+            ["waiting_room", "exam_room", "exam_room", "break_room"]
+        );
+        // A room's prompt that still names the other rooms plans the room's own contents.
+        let plan = crate::layout::spec::room_plan(
+            "break_room",
+            "A staff room in a clinic. The clinic comprises a waiting room with eight chairs \
+             and a staff room. The staff room offers a kettle.",
+            true,
+        );
+        assert_eq!(plan.room_type, "break_room");
+        assert!(plan.all_wants().any(|w| w.explicit && w.noun == "kettle"));
+        assert!(!plan.all_wants().any(|w| w.explicit && w.noun == "chair"));
+        for i in 0..b.rooms.len() {
+            let p = b.room_prompt(i);
+            assert!(!p.contains("comprises"), "room {i}: {p}");
+            let plan = crate::layout::spec::room_plan(&b.rooms[i].room_type, &p, true);
+            let nouns: Vec<&str> = plan
+                .all_wants()
+                .filter(|w| w.explicit)
+                .map(|w| w.noun.as_str())
+                .collect();
+            let own: &[&str] = match i {
+                0 => &["chair"],
+                1 | 2 => &["table", "stool"],
+                _ => &["kettle", "refrigerator"],
+            };
+            for n in own {
+                assert!(
+                    nouns.iter().any(|x| x.contains(n)),
+                    "room {i} lacks {n}: {nouns:?}\n{p}"
+                );
+            }
+            let foreign = ["kettle", "table"];
+            let others = foreign.iter().filter(|f| !own.contains(f));
+            for f in others {
+                assert!(
+                    !nouns.iter().any(|x| x.contains(f)),
+                    "room {i} has {f}: {nouns:?}"
+                );
+            }
+        }
     }
 }

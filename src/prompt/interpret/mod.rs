@@ -169,8 +169,9 @@ pub(crate) struct Interp<'a> {
     next_group: u32,
     settings_table: Option<usize>,
     last_one: Option<usize>,
-    /// "Each X has ...": (first mention of the sentence, the other rooms to copy into).
-    each_rooms: Option<(usize, Vec<usize>)>,
+    /// "Each X has ...": (first mention of the sentence, the other rooms to copy into, the
+    /// first of the room's token ranges that the sentence recorded).
+    each_rooms: Option<(usize, Vec<usize>, usize)>,
     /// A sentence has named its room (until then, objects go where they belong).
     focused: bool,
 }
@@ -237,8 +238,8 @@ impl<'a> Interp<'a> {
             self.room = i;
         }
         self.sentence_chunks(chunks);
-        if let Some((first, rooms)) = self.each_rooms.take() {
-            self.copy_to_rooms(first, &rooms);
+        if let Some((first, rooms, span)) = self.each_rooms.take() {
+            self.copy_to_rooms(first, &rooms, span);
         }
     }
 
@@ -287,8 +288,19 @@ impl<'a> Interp<'a> {
     }
 
     /// Copies the mentions from `first` on into each of `rooms` (references among them
-    /// follow the copies).
-    fn copy_to_rooms(&mut self, first: usize, rooms: &[usize]) {
+    /// follow the copies), and the room's token ranges from `span` on (the words each room's
+    /// own prompt is made of).
+    fn copy_to_rooms(&mut self, first: usize, rooms: &[usize], span: usize) {
+        let text: Vec<Range<usize>> = self
+            .spans
+            .get(self.room)
+            .map(|s| s.iter().skip(span).cloned().collect())
+            .unwrap_or_default();
+        for &room in rooms {
+            if let Some(sp) = self.spans.get_mut(room) {
+                sp.extend(text.iter().cloned());
+            }
+        }
         let end = self.mentions.len();
         for &room in rooms {
             let base = self.mentions.len();
@@ -644,8 +656,8 @@ impl<'a> Interp<'a> {
     /// Makes room `i` the room that the phrases that follow furnish. A pending "each X"
     /// copy ends here.
     fn switch_room(&mut self, i: usize) {
-        if let Some((first, rooms)) = self.each_rooms.take() {
-            self.copy_to_rooms(first, &rooms);
+        if let Some((first, rooms, span)) = self.each_rooms.take() {
+            self.copy_to_rooms(first, &rooms, span);
         }
         if i != self.room {
             // The chunk was recorded under the old room.
@@ -699,7 +711,11 @@ impl<'a> Interp<'a> {
                         i != self.room && self.rooms[i].room_type == self.rooms[self.room].room_type
                     })
                     .collect();
-                self.each_rooms = Some((self.mentions.len(), same));
+                let span = self
+                    .spans
+                    .get(self.room)
+                    .map_or(0, |s| s.len().saturating_sub(1));
+                self.each_rooms = Some((self.mentions.len(), same, span));
             }
             c.subject_is_room = true;
             c.ctx = Ctx::Room;
