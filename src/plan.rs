@@ -603,6 +603,18 @@ mod tests {
             .map(|w| w.count)
             .sum();
         assert_eq!(chairs, 8, "{:?}", plan.furniture);
+        // A table's seats are the prompt's, of whatever kind: no dining chairs besides.
+        let plan = plan_room(&prompt::read(
+            "The dining room features a long table with eight upholstered chairs beneath a \
+             crystal chandelier.",
+        ));
+        let seats: Vec<(&str, u32)> = plan
+            .furniture
+            .iter()
+            .filter(|w| is_seat(crate::words::lexicon(), &w.noun))
+            .map(|w| (w.noun.as_str(), w.count))
+            .collect();
+        assert_eq!(seats, [("armchair", 8)], "{:?}", plan.furniture);
     }
 
     #[test]

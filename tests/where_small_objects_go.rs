@@ -281,3 +281,57 @@ fn the_usual_clutter_leaves_a_sinks_basin_free() {
         );
     }
 }
+
+/// World axis-aligned box of an object (its asset's bounds, posed).
+fn world_box(
+    state: &scenesmith::state::SceneState,
+    o: &scenesmith::scene::SceneObject,
+) -> [[f64; 3]; 2] {
+    let [lo, hi] = state.scene.assets[&o.asset].bounds;
+    let mut out = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+    for x in [lo[0], hi[0]] {
+        for y in [lo[1], hi[1]] {
+            for z in [lo[2], hi[2]] {
+                let p = o
+                    .world_from_object
+                    .transform_point(&nalgebra::Point3::new(x, y, z));
+                for k in 0..3 {
+                    out[0][k] = out[0][k].min(p[k]);
+                    out[1][k] = out[1][k].max(p[k]);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// What stands on a counter keeps out of the wall cabinets over it: the microwave the prompt
+/// asks for is placed where it fits under them (or clear of them), not into them and then
+/// lost.
+#[test]
+fn things_on_a_counter_stand_clear_of_the_wall_cabinets_above() {
+    let prompt = "A small kitchen with a breakfast table and two chairs, plus a microwave and a \
+                  kettle on the counter.";
+    let (state, _) = build_scene(prompt, 0, "under_cabinets", &Backend::Builtin).unwrap();
+    let objects = &state.scene.objects;
+    assert!(
+        objects.iter().any(|o| o.category == "microwave"),
+        "the microwave is placed"
+    );
+    let wall: Vec<_> = objects
+        .iter()
+        .filter(|o| o.kind == scenesmith::scene::ObjectKind::Wall)
+        .collect();
+    assert!(!wall.is_empty(), "the kitchen has wall pieces");
+    let on_counters = objects.iter().filter(
+        |o| matches!(&o.support, Support::Object { parent, .. } if parent.contains("counter")),
+    );
+    for o in on_counters {
+        let a = world_box(&state, o);
+        for w in &wall {
+            let b = world_box(&state, w);
+            let overlap = (0..3).all(|k| a[0][k] < b[1][k] - 0.005 && b[0][k] < a[1][k] - 0.005);
+            assert!(!overlap, "{} stands in {}", o.id, w.id);
+        }
+    }
+}

@@ -211,6 +211,18 @@ impl Builder<'_> {
             // Rule targets name default nouns; use what the plan has instead.
             arrangement = arrangement
                 .with_target(|n| b.floor_of.get(n).cloned().unwrap_or_else(|| n.to_string()));
+            // A table's seats are the ones the prompt gave it ("a table with eight upholstered
+            // chairs" gets no dining chairs besides).
+            if let Some(target) = arrangement.target()
+                && super::is_seat(lex, &item.noun)
+                && b.plan.furniture.iter().any(|w| {
+                    w.explicit
+                        && super::is_seat(lex, &w.noun)
+                        && w.arrangement.target() == Some(target)
+                })
+            {
+                return;
+            }
             if let Some(target) = arrangement.target().map(str::to_string)
                 && !b.has(&target)
             {

@@ -152,7 +152,20 @@ impl Builder<'_> {
             RelationKind::Near => 6,
             _ => 7,
         };
-        rels.sort_by_key(|r| (r.implied, rank(r.kind)));
+        // A seat that comes with a table is at it, whatever else the sentence says of it ("a
+        // table with eight chairs beneath a chandelier").
+        let seat = is_seat(self.lex, &m.category);
+        let at_table = |r: &prompt::Relation| {
+            seat && r.kind == RelationKind::With
+                && cat(r.target).is_some_and(|t| is_table_like(self.lex, &t))
+        };
+        rels.sort_by_key(|r| {
+            if at_table(r) {
+                (false, 0)
+            } else {
+                (r.implied, rank(r.kind))
+            }
+        });
         for r in rels {
             let a = match (r.kind, r.target) {
                 (RelationKind::Around, t) => cat(t).map(|parent| Arrangement::Around { parent }),

@@ -750,3 +750,33 @@ fn each_after_a_participle_phrase_is_per_subject() {
     let jar = index(&r, "jar");
     assert_eq!(r.total(jar), Count::Exactly(12), "{:?}", r.mentions[jar]);
 }
+
+/// A "with" after a relation's object is that object's ("a sofa faces a TV stand with a TV":
+/// the TV is on the stand); an "and" before the clause's verb joins its subject ("a printer
+/// and a shredder sit on a table": both are on it); a seat that comes with a table stays the
+/// table's when the sentence places it further ("beneath a chandelier").
+#[test]
+fn with_nearest_object_joined_subjects_and_seats_at_their_table() {
+    let r = read("A living room where a sofa faces a TV stand with a large TV.");
+    assert_eq!(rel(&r, "tv", RelationKind::On).as_deref(), Some("tv stand"));
+    let r = read("An office with a desk. A printer and a shredder sit on a table by the door.");
+    assert_eq!(
+        rel(&r, "printer", RelationKind::On).as_deref(),
+        Some("table")
+    );
+    assert_eq!(
+        rel(&r, "shredder", RelationKind::On).as_deref(),
+        Some("table")
+    );
+    let r = read("A bedroom with a bed, and a lamp stands on the nightstand.");
+    assert_eq!(rel(&r, "bed", RelationKind::On), None);
+    let r = read("The dining room features a long table with eight chairs beneath a chandelier.");
+    assert_eq!(
+        rel(&r, "chair", RelationKind::With).as_deref(),
+        Some("table")
+    );
+    assert_eq!(
+        rel(&r, "chair", RelationKind::Under).as_deref(),
+        Some("chandelier")
+    );
+}

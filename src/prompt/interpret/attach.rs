@@ -19,8 +19,12 @@ impl Interp<'_> {
         }
         if !rel.implied {
             // An explicit relation replaces what structure implied, and an explicit support
-            // ("on saucers") replaces another support.
-            mm.relations.retain(|r| !r.implied);
+            // ("on saucers") replaces another support. A "with" grouping stays beside a
+            // relation that is no support ("a table with eight chairs beneath a chandelier":
+            // the chairs are still the table's).
+            let keeps_with = !rel.is_support();
+            mm.relations
+                .retain(|r| !r.implied || (keeps_with && r.kind == RelationKind::With));
             if rel.is_support() {
                 mm.relations.retain(|r| !r.is_support());
             }
@@ -303,7 +307,11 @@ impl Interp<'_> {
         if matches!(c.ctx, Ctx::Setting(_)) {
             return;
         }
-        let parent = c.focus.clone();
+        // "a sofa faces a TV stand with a large TV": the "with" is the nearest object's.
+        let parent = match c.last_prep_obj.take() {
+            Some(po) => vec![po],
+            None => c.focus.clone(),
+        };
         if c.subject_is_room && c.verb.is_none() {
             // "A garage with ...": the room is not the subject of later participles.
             c.subject_is_room = false;

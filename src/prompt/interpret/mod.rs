@@ -391,7 +391,10 @@ impl<'a> Interp<'a> {
                     }
                     c.sep_was_comma = comma || (c.after_sep && c.sep_was_comma);
                     c.after_sep = true;
-                    if self.new_clause_follows(chunks, k) {
+                    // "A printer and a shredder sit on a table": before the clause's verb an
+                    // "and" without a comma joins its subject, not a new clause.
+                    let joins_subject = !comma && c.verb.is_none() && !c.subject.is_empty();
+                    if !joins_subject && self.new_clause_follows(chunks, k) {
                         let room = self.room;
                         c = Clause::new();
                         self.room = room;

@@ -93,6 +93,49 @@ fn parent_intrusions(scene: &SceneState, s: &SurfaceRef) -> Vec<Slot> {
         .collect()
 }
 
+/// Other objects of the room that reach into the free space above `s` (a wall cabinet over a
+/// counter, a shelf's overhang, a pendant low over a table), as footprints clipped to the
+/// surface with the height above it where each begins: an item taller than that would stand in
+/// it. Objects on `s` itself, the supporting piece (its own pieces are
+/// [`parent_intrusions`]), architecture and thin things at the surface's level are left out.
+fn foreign_intrusions(scene: &SceneState, s: &SurfaceRef) -> Vec<(Slot, f64)> {
+    const SLACK: f64 = 0.002;
+    let (su, sv) = (s.surface.size[0] / 2.0, s.surface.size[1] / 2.0);
+    let surface_from_world = s.world_from_surface().inverse();
+    scene
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.id != s.parent.id && o.room == s.parent.room)
+        .filter(|o| o.kind != ObjectKind::Architecture)
+        .filter(|o| {
+            !matches!(&o.support, Support::Object { parent, surface }
+                if *parent == s.parent.id && *surface == s.surface.id)
+        })
+        .filter_map(|o| {
+            let rec = scene.scene.assets.get(&o.asset)?;
+            let local = surface_from_world.compose(&o.world_from_object);
+            let (lo, hi) = rotated_bounds(rec, &local.rotation());
+            let t = local.translation();
+            let (z0, z1) = (t.z + lo[2], t.z + hi[2]);
+            if z1 < 0.01 || z0 > s.surface.clearance - SLACK {
+                return None;
+            }
+            let (u0, u1) = ((t.x + lo[0]).max(-su), (t.x + hi[0]).min(su));
+            let (v0, v1) = ((t.y + lo[1]).max(-sv), (t.y + hi[1]).min(sv));
+            (u1 - u0 > SLACK && v1 - v0 > SLACK).then(|| {
+                let slot = Slot {
+                    u: (u0 + u1) / 2.0,
+                    v: (v0 + v1) / 2.0,
+                    hu: (u1 - u0) / 2.0,
+                    hv: (v1 - v0) / 2.0,
+                };
+                (slot, z0.max(0.0))
+            })
+        })
+        .collect()
+}
+
 /// Local rotation of an item on a surface: yaw, optionally laid on its side first.
 pub(super) fn item_rotation(yaw_deg: f64, lay_flat: bool) -> UnitQuaternion<f64> {
     let yaw = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), yaw_deg.to_radians());
@@ -194,6 +237,12 @@ fn fit_with(
     }
     let mut taken = occupied(scene, s);
     taken.extend(parent_intrusions(scene, s));
+    taken.extend(
+        foreign_intrusions(scene, s)
+            .into_iter()
+            .filter(|&(_, bottom)| bottom < h + GAP)
+            .map(|(slot, _)| slot),
+    );
     taken.extend_from_slice(extra);
     let make = |u: f64, v: f64| Slot { u, v, hu, hv };
     let free = |slot: &Slot| {
