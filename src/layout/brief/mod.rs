@@ -191,12 +191,15 @@ pub fn from_reading(prompt: &str, reading: &Reading) -> HouseBrief {
     let labels = label_words(&brief.rooms);
     for &(s, e) in sents.iter().skip(1) {
         let toks = tokens(text, s, e);
-        if house_wide(&toks) {
+        let words: Vec<String> = toks.iter().map(|t| crate::prompt::singular(&t.w)).collect();
+        let named = rooms_named(&words, &labels);
+        // "The home office contains ...": a room's sentence, though "home" names a house.
+        let about_a_room = named.first().is_some_and(|&(at, _)| at <= 1);
+        if house_wide(&toks) && !about_a_room {
             // A sentence that names rooms ("The clinic comprises a waiting room, two
             // treatment rooms ...") is the layout's: its materials and style count, but no
             // room's prompt repeats it.
-            let words: Vec<String> = toks.iter().map(|t| crate::prompt::singular(&t.w)).collect();
-            let names_rooms = !rooms_named(&words, &labels).is_empty();
+            let names_rooms = !named.is_empty();
             let (f, w) = materials_in(&toks);
             brief.floor_material = f.or(brief.floor_material.take());
             brief.wall_material = w.or(brief.wall_material.take());
@@ -227,10 +230,14 @@ pub fn from_reading(prompt: &str, reading: &Reading) -> HouseBrief {
             }
             // House-wide sentences inside a longer part are the house's, not the room's.
             let mut own = part.to_string();
-            for h in &house_wide_raw {
+            for h in house_wide_raw.iter().chain(&house_wide_texts) {
                 own = own.replacen(h.as_str(), " ", 1);
             }
-            let own = own.split_whitespace().collect::<Vec<_>>().join(" ");
+            let own = own
+                .split_whitespace()
+                .filter(|w| !matches!(*w, "." | "!" | "?" | ";"))
+                .collect::<Vec<_>>()
+                .join(" ");
             let part = own.trim_start_matches(['.', '!', '?', ';', ' ']);
             if part.is_empty() {
                 continue;
@@ -543,6 +550,16 @@ mod tests {
             types(&b),
             ["waiting_room", "exam_room", "exam_room", "break_room"]
         );
+        // "The home office ..." is the room's sentence ("home" also names a house), and a
+        // house-wide sentence appears once in each room's prompt.
+        let b2 = read(
+            "An apartment with a living room and a home office. The home office contains a \
+             standing desk. A few houseplants are scattered throughout.",
+        );
+        let office = b2.room_prompt(1);
+        assert!(office.contains("standing desk"), "{office}");
+        assert_eq!(office.matches("houseplants").count(), 1, "{office}");
+        assert!(!b2.room_prompt(0).contains("standing desk"));
         // A room's prompt that still names the other rooms plans the room's own contents.
         let plan = crate::layout::spec::room_plan(
             "break_room",
