@@ -197,8 +197,9 @@ pub fn from_reading(prompt: &str, reading: &Reading) -> HouseBrief {
         let about_a_room = named.first().is_some_and(|&(at, _)| at <= 1);
         if house_wide(&toks) && !about_a_room {
             // A sentence that names rooms ("The clinic comprises a waiting room, two
-            // treatment rooms ...") is the layout's: its materials and style count, but no
-            // room's prompt repeats it.
+            // treatment rooms ...", "The flat has no dining table, and the kitchen has an
+            // island") reaches the rooms it names (every room of a named label), not all.
+            let named_labels: Vec<&Vec<String>> = named.iter().map(|&(_, r)| &labels[r]).collect();
             let names_rooms = !named.is_empty();
             let (f, w) = materials_in(&toks);
             brief.floor_material = f.or(brief.floor_material.take());
@@ -211,7 +212,13 @@ pub fn from_reading(prompt: &str, reading: &Reading) -> HouseBrief {
             );
             house_wide_texts.push(t.trim_end_matches(['.', '!', '?', ';']).to_string());
             house_wide_raw.push(t.clone());
-            if !names_rooms {
+            if names_rooms {
+                for (room, label) in brief.rooms.iter_mut().zip(&labels) {
+                    if named_labels.contains(&label) {
+                        room.text.push(t.clone());
+                    }
+                }
+            } else {
                 brief.house_text.push(t);
             }
         }
@@ -560,6 +567,15 @@ mod tests {
         assert!(office.contains("standing desk"), "{office}");
         assert_eq!(office.matches("houseplants").count(), 1, "{office}");
         assert!(!b2.room_prompt(0).contains("standing desk"));
+        // A house sentence that names one room reaches that room, negation and all.
+        let b3 = read(
+            "A small apartment with a kitchen, a living room and a bedroom. The apartment has \
+             no dining table, and the kitchen has a small island.",
+        );
+        let kitchen = crate::layout::spec::room_plan("kitchen", &b3.room_prompt(0), true);
+        assert!(kitchen.furniture.iter().any(|w| w.noun == "kitchen island"));
+        assert!(kitchen.excluded.iter().any(|n| n == "dining table"));
+        assert!(!b3.room_prompt(2).contains("island"));
         // A room's prompt that still names the other rooms plans the room's own contents.
         let plan = crate::layout::spec::room_plan(
             "break_room",
@@ -572,7 +588,7 @@ mod tests {
         assert!(!plan.all_wants().any(|w| w.explicit && w.noun == "chair"));
         for i in 0..b.rooms.len() {
             let p = b.room_prompt(i);
-            assert!(!p.contains("comprises"), "room {i}: {p}");
+            assert_eq!(p.matches("comprises").count(), 1, "room {i}: {p}");
             let plan = crate::layout::spec::room_plan(&b.rooms[i].room_type, &p, true);
             let nouns: Vec<&str> = plan
                 .all_wants()
