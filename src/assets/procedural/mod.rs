@@ -50,7 +50,7 @@ use crate::scene::SurfaceRecord;
 pub use generic::build_generic;
 
 /// Bumped whenever any generator's output changes, so cached assets are rebuilt.
-pub const GENERATOR_VERSION: u32 = 4;
+pub const GENERATOR_VERSION: u32 = 5;
 
 /// A fingerprint of everything that shapes a built asset: the generators, the geometry and
 /// physics code and the data tables, hashed from their sources compiled into the binary. The

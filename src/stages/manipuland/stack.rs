@@ -83,6 +83,29 @@ mod tests {
     use crate::assets::procedural::{AssetRequest, build};
 
     #[test]
+    fn nested_plates_rest_base_on_base_with_their_rims_clear() {
+        // A flat base-on-base contact, not a ring of rim pieces wedged in the rim below
+        // (which cost Drake's contact solver several times as much per step).
+        let none = std::collections::BTreeMap::new();
+        let plate = build(&AssetRequest::new("plate", 1)).unwrap();
+        let mut rim_only = plate.clone();
+        rim_only.links[0].collisions.remove(0);
+        let pitch = stack_pitch(&plate);
+        let below = posed_object("a", &plate, &Pose::IDENTITY, &none);
+        // Pressed 0.5 mm past touching (the pitch keeps a 0.5 mm gap).
+        let dz = pitch - 0.001;
+        let whole = posed_object("b", &plate, &Pose::from_xyz(0.0, 0.0, dz), &none);
+        let rims = posed_object("b", &rim_only, &Pose::from_xyz(0.0, 0.0, dz), &none);
+        assert!(object_penetration(&below, &whole) > 1e-4);
+        assert_eq!(object_penetration(&below, &rims), 0.0, "pitch {pitch}");
+        // On a board only the base touches: the rim stands clear of the ground.
+        let rim_bottom = posed_object("r", &rim_only, &Pose::IDENTITY, &none)
+            .bounds
+            .0[2];
+        assert!(rim_bottom > 1e-3, "rim bottom {rim_bottom}");
+    }
+
+    #[test]
     fn plates_nest_books_do_not() {
         let plate = build(&AssetRequest::new("plate", 1)).unwrap();
         let [lo, hi] = plate.bounds();
