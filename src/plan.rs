@@ -583,6 +583,33 @@ mod tests {
     }
 
     #[test]
+    fn a_default_does_not_hide_another_default_of_its_kind() {
+        // The bathroom's shelf and towel rack (a kind of rack, a kind of shelf), its cabinet
+        // and medicine cabinet: all the room's.
+        let plan = plan_room(&prompt::read("A bathroom with a bathtub and a toilet."));
+        for noun in ["towel rack", "medicine cabinet"] {
+            assert!(
+                plan.wall.iter().any(|w| w.noun == noun),
+                "{noun}: {:?}",
+                plan.wall
+            );
+        }
+        assert!(plan.furniture.iter().any(|w| w.noun == "shelf"));
+        // A bar's stools at its tables besides the bar stools at its counter.
+        let plan = plan_room(&prompt::read("A bar."));
+        for noun in ["bar stool", "stool"] {
+            assert!(
+                plan.furniture.iter().any(|w| w.noun == noun),
+                "{noun}: {:?}",
+                plan.furniture
+            );
+        }
+        // An asked-for noun still covers the defaults of its kind.
+        let plan = plan_room(&prompt::read("A bathroom with a cabinet."));
+        assert!(!plan.wall.iter().any(|w| w.noun == "medicine cabinet"));
+    }
+
+    #[test]
     fn a_table_for_n_seats_n() {
         let plan = plan_room(&prompt::read(
             "A dining room with a long table for six people and a rug.",

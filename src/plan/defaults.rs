@@ -109,8 +109,12 @@ impl Builder<'_> {
         }
     }
 
-    /// The explicit noun that covers a default noun, if any.
-    pub(super) fn covered_by(&self, noun: &str) -> Option<String> {
+    /// The noun already planned that covers a default noun, if any: the same noun, or one it
+    /// is a kind of (or that is a kind of it). The nouns of `own`, the room type's other
+    /// defaults, cover only themselves: the bathroom's default shelf and its towel rack (a
+    /// kind of rack, a kind of shelf) are both the room's, as are its cabinet and its
+    /// medicine cabinet.
+    fn covered_by(&self, noun: &str, own: &[String]) -> Option<String> {
         let present = self
             .plan
             .furniture
@@ -124,7 +128,7 @@ impl Builder<'_> {
             if p == noun {
                 return Some(p.to_string());
             }
-            if found.is_none() && covers(self.lex, p, noun) {
+            if found.is_none() && !own.iter().any(|o| o == p) && covers(self.lex, p, noun) {
                 found = Some(p.to_string());
             }
         }
@@ -178,12 +182,12 @@ impl Builder<'_> {
             .rooms
             .get(self.room)
             .map_or(1.0, |r| r.size_scale);
-        let add = |b: &mut Self, item: &KbItem, support: Support| {
+        let add = |b: &mut Self, item: &KbItem, support: Support, own: &mut Vec<String>| {
             // An optional piece whose first home is another room of the house stays there.
             if b.excluded(&item.noun) || (item.count[0] == 0 && b.hosted_elsewhere(&item.noun)) {
                 return;
             }
-            if let Some(by) = b.covered_by(&item.noun) {
+            if let Some(by) = b.covered_by(&item.noun, own) {
                 b.floor_of.insert(item.noun.clone(), by);
                 return;
             }
@@ -246,20 +250,22 @@ impl Builder<'_> {
                 height_m: item.height,
                 parent_instance: None,
             };
+            own.push(want.noun.clone());
             match support {
                 Support::Floor => b.plan.furniture.push(want),
                 Support::Wall => b.plan.wall.push(want),
                 _ => b.plan.ceiling.push(want),
             }
         };
+        let mut own = Vec::new();
         for item in &rt.furniture {
-            add(self, item, Support::Floor);
+            add(self, item, Support::Floor, &mut own);
         }
         for item in &rt.wall_items {
-            add(self, item, Support::Wall);
+            add(self, item, Support::Wall, &mut own);
         }
         for item in &rt.ceiling {
-            add(self, item, Support::Ceiling);
+            add(self, item, Support::Ceiling, &mut own);
         }
         // Seats for table-like pieces the prompt named "with chairs" but without a count are
         // handled by `count`; seats for set tables by `place_settings`.
