@@ -11,7 +11,9 @@
 //! out).
 
 use crate::assets::router::naming::footprint;
-use crate::plan::{Arrangement, Want, clutter_factor, one_per_parent, split_counts};
+use crate::plan::{
+    Arrangement, Want, clutter_factor, kept_in_numbers, one_per_parent, split_counts,
+};
 use crate::prompt::Density;
 use crate::scene::{AssetRecord, SurfaceRecord};
 
@@ -68,12 +70,24 @@ pub fn clutter_area(rec: &AssetRecord, density: Option<Density>) -> (f64, f64) {
     (open, enclosed)
 }
 
-/// How many objects of `nouns` (mixed as `split_counts` mixes them) cover `area` m².
-fn count_for(area: f64, nouns: &[&str]) -> u32 {
+/// How many objects of `nouns` (mixed as `split_counts` mixes them) cover `area` m²: when
+/// the first is a thing kept in numbers it is half of them (a bookcase's books), so the mean
+/// footprint weighs it by half.
+fn count_for(area: f64, nouns: &[&str], single: impl Fn(&str) -> bool) -> u32 {
     if nouns.is_empty() || area <= 0.0 {
         return 0;
     }
-    let mean = nouns.iter().map(|n| footprint(n)).sum::<f64>() / nouns.len() as f64;
+    let mean_of = |ns: &[&str]| ns.iter().map(|n| footprint(n)).sum::<f64>() / ns.len() as f64;
+    let mean = match nouns {
+        [first, rest @ ..]
+            if !rest.is_empty()
+                && !single(first)
+                && kept_in_numbers(crate::words::lexicon(), first) =>
+        {
+            0.5 * footprint(first) + 0.5 * mean_of(rest)
+        }
+        _ => mean_of(nouns),
+    };
     (area / mean).floor() as u32
 }
 
@@ -85,6 +99,19 @@ pub const ROOM_DEFAULTS: u32 = 80;
 /// the coverage.
 pub fn room_budget(density: Option<Density>) -> u32 {
     (f64::from(ROOM_DEFAULTS) * clutter_factor(density)).round() as u32
+}
+
+/// Default small objects a room aims for at the usual density when its pieces have few
+/// surfaces (a home office of a desk and a bookshelf): their surfaces are then filled more
+/// densely, up to [`MAX_FLOOR_GROWTH`] times the usual coverage.
+pub const ROOM_FLOOR: u32 = 60;
+
+/// Most a room's coverage grows to reach [`ROOM_FLOOR`].
+pub const MAX_FLOOR_GROWTH: f64 = 2.0;
+
+/// [`ROOM_FLOOR`] at `density` (a minimal room aims for half).
+pub fn room_floor(density: Option<Density>) -> u32 {
+    (f64::from(ROOM_FLOOR) * clutter_factor(density)).round() as u32
 }
 
 /// How many default small objects one piece may get at `density`: `MAX_PER_PIECE` scaled
@@ -123,7 +150,7 @@ pub fn sized_to(
         let nouns: Vec<&str> = group.iter().map(|w| w.noun.as_str()).collect();
         let planned: u32 = group.iter().map(|w| w.count).sum();
         let area = if stored { enclosed_area } else { open_area };
-        let room = (f64::from(count_for(area, &nouns)) * share).round() as u32;
+        let room = (f64::from(count_for(area, &nouns, single)) * share).round() as u32;
         let want = room.min(*budget).max(planned);
         *budget = budget.saturating_sub(want);
         let counts = split_counts(want, &nouns, single, 1);
@@ -209,6 +236,47 @@ mod tests {
         .map(|w| w.count)
         .sum();
         assert!((20..=MAX_PER_PIECE).contains(&books), "{books}");
+    }
+
+    #[test]
+    fn a_mix_led_by_books_counts_the_books_as_half_and_a_sparse_room_fills_fuller() {
+        // Half of a bookcase's objects are books, a twelfth of the footprint of a plant
+        // or a folder: the count follows the mix, not the plain mean of the nouns.
+        let mix = ["book", "folder", "photo frame", "small plant"];
+        let plain = mix.iter().map(|n| footprint(n)).sum::<f64>() / mix.len() as f64;
+        let area = 0.5;
+        let counted = count_for(area, &mix, |_| false);
+        assert!(
+            f64::from(counted) > 1.3 * (area / plain).floor(),
+            "{counted} vs {}",
+            (area / plain).floor()
+        );
+        // A mix not led by a thing kept in numbers keeps the plain mean.
+        let vases = ["vase", "book", "small plant"];
+        let plain = vases.iter().map(|n| footprint(n)).sum::<f64>() / 3.0;
+        assert_eq!(
+            count_for(area, &vases, |_| false),
+            (area / plain).floor() as u32
+        );
+        // The room's growth share (a room below `room_floor`) fills a piece fuller.
+        let books = |share: f64| -> u32 {
+            sized_to(
+                &record("bookshelf"),
+                vec![
+                    default("vase", 2, Arrangement::Free),
+                    default("small plant", 2, Arrangement::Free),
+                ],
+                None,
+                share,
+                &mut piece_budget(None),
+            )
+            .iter()
+            .map(|w| w.count)
+            .sum()
+        };
+        assert!(books(MAX_FLOOR_GROWTH) > books(1.0), "{}", books(1.0));
+        assert!(room_floor(Some(Density::Minimalist)) < room_floor(None));
+        assert!(room_floor(None) < room_budget(None));
     }
 
     #[test]

@@ -247,7 +247,8 @@ fn surface_furniture<'a>(
 ///
 /// Each piece's defaults grow to its surfaces (`clutter::sized_to`), and the room's defaults
 /// together stay near `clutter::room_budget`: past it, every piece's growth shrinks by the
-/// same share.
+/// same share. Below `clutter::room_floor` (a room of few pieces) every piece's growth
+/// grows by the same share instead, at most `clutter::MAX_FLOOR_GROWTH` times.
 fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String, RoomPlan)> {
     let full = split_plans(scene, room, plan, 1.0);
     let defaults: u32 = full
@@ -257,10 +258,15 @@ fn entity_plans(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<(String,
         .map(|w| w.count)
         .sum();
     let budget = super::clutter::room_budget(plan.density);
-    if defaults <= budget {
+    let floor = super::clutter::room_floor(plan.density);
+    if defaults > budget {
+        return split_plans(scene, room, plan, f64::from(budget) / f64::from(defaults));
+    }
+    if defaults == 0 || defaults >= floor {
         return full;
     }
-    split_plans(scene, room, plan, f64::from(budget) / f64::from(defaults))
+    let growth = (f64::from(floor) / f64::from(defaults)).min(super::clutter::MAX_FLOOR_GROWTH);
+    split_plans(scene, room, plan, growth)
 }
 
 /// `entity_plans` with each piece's growth scaled by `share`.
