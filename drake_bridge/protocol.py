@@ -364,6 +364,7 @@ class SettleReply:
     wall_s: float
     ms_per_step: float
     cache: CacheStats
+    diverged: bool = False
 
 
 @dataclass(kw_only=True)

@@ -2,7 +2,8 @@
 
 `settle` runs a discrete plant (1 ms, SAP-family "lagged" approximation by default) until every
 free body has stayed slower than the rest thresholds for `rest_time` seconds, or `max_time`
-simulated seconds, or `wall_limit` wall seconds; it returns the final free-body poses and how far
+simulated seconds, or `wall_limit` wall seconds, or a body's state goes non-finite
+(`diverged`: the poses and motion are then those at the last rest window's start); it returns the final free-body poses and how far
 each instance moved. `simulate` is the same loop for a fixed duration (the STB metric).
 Neither decides what is removed: the caller reads the motions and applies its own rules.
 """
@@ -78,9 +79,23 @@ def _run(args, duration):
     # chattering in place (a book in a drawer, at 5 mm/s and 0.2 mm) is at rest too. Two
     # still windows in a row: something that only starts to tip moves little in its first.
     window_t0, window_poses, still_windows = 0.0, dict(start), 0
+    diverged = False
     while t < duration - 1e-12:
-        t = min(duration, t + interval)
-        simulator.AdvanceTo(t)
+        t_next = min(duration, t + interval)
+        try:
+            simulator.AdvanceTo(t_next)
+        except RuntimeError as e:
+            if "non-finite" not in str(e):
+                raise
+            # A body's state went NaN: stop, and put every body back where it was at the
+            # last window's start (finite), so the reply holds the motion up to there.
+            diverged = True
+            for b in bodies:
+                plant.SetFreeBodyPose(pctx, b, window_poses[b.index()])
+            plant.SetVelocities(pctx, np.zeros(plant.num_velocities()))
+            t = window_t0
+            break
+        t = t_next
         v_max = w_max = 0.0
         for b in bodies:
             if _fell(plant, pctx, b, floor_z):
@@ -129,8 +144,9 @@ def _run(args, duration):
         motion=motion,
         sim_time=t,
         steps=steps,
-        at_rest=at_rest,
+        at_rest=at_rest and not diverged,
         timed_out=timed_out,
+        diverged=diverged,
         max_speed=v_max,
         max_angular_speed=w_max,
         max_penetration_m=_max_penetration(scene, ctx),

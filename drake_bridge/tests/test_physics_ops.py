@@ -214,3 +214,40 @@ def test_a_box_on_a_table_is_at_rest_before_the_end(tmp_path):
     r = ops.call("simulate", dict(scene, duration=5.0, stop_at_rest=True))
     assert r["at_rest"] and r["sim_time"] < 2.0
     assert r["motion"]["box"]["displacement_m"] < 1e-3
+
+
+class _DivergingSimulator:
+    """A pydrake Simulator that fails as Drake does when a state goes non-finite, once
+    simulated time passes `at` (or with another error)."""
+
+    def __init__(self, real, at, message):
+        self._real, self._at, self._message = real, at, message
+
+    def Initialize(self):
+        self._real.Initialize()
+
+    def AdvanceTo(self, t):
+        if t > self._at:
+            raise RuntimeError(self._message)
+        self._real.AdvanceTo(t)
+
+
+def test_a_simulation_that_goes_non_finite_is_reported_not_raised(tmp_path, monkeypatch):
+    from drake_bridge import settle
+    scene = write_scene(tmp_path, [FLOOR, ("box", (0.0, 0.0, 0.05), (0.1, 0.1, 0.1), False)])
+    nan = ("SceneGraph encountered a non-finite value (e.g., NaN or infinity) on a pose "
+           "input port.")
+    real = settle.Simulator
+    monkeypatch.setattr(settle, "Simulator",
+                        lambda d, c: _DivergingSimulator(real(d, c), 0.7, nan))
+    r = ops.call("simulate", dict(scene, duration=5.0, stop_at_rest=False))
+    assert r["diverged"] and not r["at_rest"]
+    # The reply holds the last rest window's start: finite poses and motion.
+    assert r["sim_time"] == pytest.approx(0.5)
+    assert r["motion"]["box"]["displacement_m"] < 1e-3
+    assert _z(r, "box") == pytest.approx(0.05, abs=1e-3)
+    # Any other failure of the simulator is still an error.
+    monkeypatch.setattr(settle, "Simulator",
+                        lambda d, c: _DivergingSimulator(real(d, c), 0.2, "out of memory"))
+    with pytest.raises(Exception, match="out of memory"):
+        ops.call("simulate", dict(scene, duration=1.0))

@@ -228,6 +228,10 @@ pub struct Stability {
     /// unstable.
     #[serde(default)]
     pub timed_out_islands: usize,
+    /// Islands whose simulation went non-finite (Drake's solver diverged); their objects
+    /// count as unstable.
+    #[serde(default)]
+    pub diverged_islands: usize,
     /// The objects that failed.
     pub unstable: Vec<Unstable>,
 }
@@ -447,10 +451,10 @@ fn join_counts(m: &BTreeMap<String, usize>) -> String {
 
 /// The STB row of the table: percent, protocol, thresholds, islands and how they ended.
 fn stb_row(s: &Stability) -> String {
-    let ending = if s.timed_out_islands > 0 {
+    let ending = if s.timed_out_islands + s.diverged_islands > 0 {
         format!(
-            "; {} islands stopped by the wall-clock cap, their objects counted unstable",
-            s.timed_out_islands
+            "; {} islands stopped by the wall-clock cap and {} diverged (non-finite), their objects counted unstable",
+            s.timed_out_islands, s.diverged_islands
         )
     } else if s.simulated_s + 1e-9 < s.options.duration_s {
         format!(

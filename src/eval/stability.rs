@@ -214,12 +214,15 @@ fn settle_options(opts: &StabilityOptions) -> SettleOptions {
 fn verdicts(opts: &StabilityOptions, islands: usize, results: &[SettleReply]) -> Stability {
     let mut unstable = Vec::new();
     let (mut n, mut sum_d, mut sum_r, mut max_d) = (0usize, 0.0, 0.0, 0.0f64);
-    let mut timed_out = 0;
+    let (mut timed_out, mut diverged) = (0, 0);
     for result in results {
         // An island the wall-clock cap stopped before the duration was not shown stable:
         // every object in it counts as unstable, whatever it did in the time simulated.
-        let cut_short = result.timed_out && !result.at_rest;
-        timed_out += usize::from(cut_short);
+        // So was an island whose simulation diverged: its objects flew off to non-finite
+        // poses (the motion is what they did before).
+        let cut_short = (result.timed_out && !result.at_rest) || result.diverged;
+        timed_out += usize::from(result.timed_out && !result.at_rest && !result.diverged);
+        diverged += usize::from(result.diverged);
         // After an island stopped early at rest, the most the remaining time could add.
         let left = (opts.duration_s - result.sim_time).max(0.0);
         let (extra_d, extra_r) = if result.at_rest {
@@ -260,6 +263,7 @@ fn verdicts(opts: &StabilityOptions, islands: usize, results: &[SettleReply]) ->
         simulated_s: results.iter().map(|r| r.sim_time).fold(0.0, f64::max),
         islands,
         timed_out_islands: timed_out,
+        diverged_islands: diverged,
         unstable,
     }
 }
@@ -308,6 +312,7 @@ mod tests {
             time_step: 1e-3,
             sim_s: 1.0,
             cache: CacheStats { hits: 0, misses: 1 },
+            diverged: false,
         }
     }
 
@@ -324,6 +329,19 @@ mod tests {
         let ids: Vec<&str> = s.unstable.iter().map(|u| u.id.as_str()).collect();
         assert_eq!(ids, ["mug", "plate"]);
         assert_eq!((s.free_objects, s.stable), (4, 2));
+    }
+
+    #[test]
+    fn an_island_that_diverged_is_unstable() {
+        let opts = StabilityOptions::default();
+        let mut blown = island(&[("pencil", 0.0005), ("desk", 0.0)], 2.5, false, false);
+        blown.diverged = true;
+        let results = [blown, island(&[("lamp", 0.0)], 0.8, true, false)];
+        let s = verdicts(&opts, 2, &results);
+        assert_eq!((s.diverged_islands, s.timed_out_islands), (1, 0));
+        let ids: Vec<&str> = s.unstable.iter().map(|u| u.id.as_str()).collect();
+        assert_eq!(ids, ["desk", "pencil"]);
+        assert_eq!((s.free_objects, s.stable), (3, 1));
     }
 
     #[test]

@@ -194,6 +194,10 @@ pub struct SettleReply {
     pub ms_per_step: f64,
     /// The simulation plant cache after this request.
     pub cache: CacheStats,
+    /// A body's state went non-finite (Drake's solver diverged): the simulation stopped, and
+    /// the poses and motion are those at the start of the last rest window.
+    #[serde(default)]
+    pub diverged: bool,
 }
 
 /// The projection's solver choice.
