@@ -313,6 +313,12 @@ def _as_written():
 
 
 @dataclass(kw_only=True)
+class VerdictBound:
+    max_displacement_m: float
+    max_rotation_rad: float
+
+
+@dataclass(kw_only=True)
 class SimulationArgs(SceneFiles):
     poses: Optional[Poses] = None
     time_step: float = 1e-3
@@ -323,6 +329,7 @@ class SimulationArgs(SceneFiles):
     wall_limit: float = 600.0
     contact: ContactArgs = field(default_factory=_as_written)
     floor_z: Optional[float] = None
+    verdict: Optional[VerdictBound] = None
 
 
 @dataclass(kw_only=True)
@@ -343,6 +350,8 @@ class Motion:
     rotation_rad: float
     start_z: float
     end_z: float
+    speed_bound: float = 0.0
+    angular_speed_bound: float = 0.0
 
 
 @dataclass(kw_only=True)
@@ -365,6 +374,7 @@ class SettleReply:
     ms_per_step: float
     cache: CacheStats
     diverged: bool = False
+    bounded: bool = False
 
 
 @dataclass(kw_only=True)

@@ -3,8 +3,10 @@
 `settle` runs a discrete plant (1 ms, SAP-family "lagged" approximation by default) until every
 free body has stayed slower than the rest thresholds for `rest_time` seconds, or `max_time`
 simulated seconds, or `wall_limit` wall seconds, or a body's state goes non-finite
-(`diverged`: the poses and motion are then those at the last rest window's start); it returns the final free-body poses and how far
-each instance moved. `simulate` is the same loop for a fixed duration (the STB metric).
+(`diverged`: the poses and motion are then those at the last rest window's start); it returns
+the final free-body poses and how far each instance moved. `simulate` is the same loop for a
+fixed duration (the STB metric). With a `verdict` bound (the STB thresholds), it also stops
+once the rest of the duration cannot change any body's verdict (`bounded`; see `_verdict_fixed`).
 Neither decides what is removed: the caller reads the motions and applies its own rules.
 """
 
@@ -44,6 +46,42 @@ def _moved_less(X0, X1, distance, angle):
     return float(X0.rotation().InvertAndCompose(X1.rotation()).ToAngleAxis().angle()) < angle
 
 
+# A bounded stop leaves every body at most this fraction of the way to a verdict threshold,
+# counting what its motion of the last two windows would add over the rest of the duration.
+VERDICT_MARGIN = 0.5
+# A window may move this many times the one before (plus the still thresholds) and still count
+# as not speeding up: chatter varies from window to window, tipping grows steadily.
+SPEED_UP = 1.5
+
+
+def _turned(X0, X1):
+    return float(X0.rotation().InvertAndCompose(X1.rotation()).ToAngleAxis().angle())
+
+
+def _verdict_fixed(total, window, before, window_s, left, bound, still):
+    """True when one body's verdict cannot change over the `left` seconds to go.
+
+    `total` is its (displacement, rotation) from the start, `window` and `before` its motion over
+    the last two rest windows of `window_s` seconds, `bound` the (displacement, rotation)
+    thresholds, `still` the motion per window that counts as still. A body qualifies when it is
+    not speeding up and, at the larger of its two window rates, stays under VERDICT_MARGIN of
+    both thresholds to the end; or when it is already past a threshold by more than it could
+    come back and all but still (a tumbler rolling away keeps the simulation going, for MD and
+    XD). Returns the rates (per second) too, so the caller can add what the rest of the
+    duration could bring.
+    """
+    rates = []
+    for k in range(2):
+        if window[k] > SPEED_UP * before[k] + still[k]:
+            return False, None
+        rates.append(max(window[k], before[k]) / window_s)
+    stays = all(total[k] + rates[k] * left < VERDICT_MARGIN * bound[k] for k in range(2))
+    # Past a threshold for good, and close to still (so MD and XD are near their 5 s values).
+    gone = (any(total[k] - rates[k] * left > (2.0 - VERDICT_MARGIN) * bound[k] for k in range(2))
+            and all(rates[k] * left < VERDICT_MARGIN * bound[k] for k in range(2)))
+    return stays or gone, rates
+
+
 def _run(args, duration):
     """Runs a protocol.SettleArgs / SimulateArgs for `duration` simulated seconds."""
     time_step = in_range("time_step", args.time_step, 1e-4, 1e-2)
@@ -79,6 +117,10 @@ def _run(args, duration):
     # chattering in place (a book in a drawer, at 5 mm/s and 0.2 mm) is at rest too. Two
     # still windows in a row: something that only starts to tip moves little in its first.
     window_t0, window_poses, still_windows = 0.0, dict(start), 0
+    window_motion = {}
+    rates = {}
+    bounded = False
+    verdict = args.verdict if stop_at_rest else None
     diverged = False
     while t < duration - 1e-12:
         t_next = min(duration, t + interval)
@@ -104,7 +146,8 @@ def _run(args, duration):
             v_max = max(v_max, float(np.linalg.norm(V.translational())))
             w_max = max(w_max, float(np.linalg.norm(V.rotational())))
         quiet_for = quiet_for + interval if (v_max < rest_speed and w_max < rest_angular_speed) else 0.0
-        if t - window_t0 >= rest_time - 1e-9:
+        window_end = t - window_t0 >= rest_time - 1e-9
+        if window_end:
             now = {b.index(): plant.EvalBodyPoseInWorld(pctx, b) for b in bodies}
             window_still = all(
                 _fell(plant, pctx, b, floor_z)
@@ -112,13 +155,37 @@ def _run(args, duration):
                                rest_speed * rest_time, rest_angular_speed * rest_time)
                 for b in bodies)
             still_windows = still_windows + 1 if window_still else 0
+            before_motion = window_motion
+            window_motion = {
+                b.index(): (float(np.linalg.norm(now[b.index()].translation()
+                                                 - window_poses[b.index()].translation())),
+                            _turned(window_poses[b.index()], now[b.index()]))
+                for b in bodies}
             window_t0, window_poses = t, now
+            if verdict is not None and before_motion:
+                bound = (verdict.max_displacement_m, verdict.max_rotation_rad)
+                still = (rest_speed * rest_time, rest_angular_speed * rest_time)
+                rates, bounded = {}, True
+                for b in bodies:
+                    if _fell(plant, pctx, b, floor_z):
+                        continue
+                    i = b.index()
+                    total = (float(np.linalg.norm(now[i].translation() - start[i].translation())),
+                             _turned(start[i], now[i]))
+                    fixed, r = _verdict_fixed(total, window_motion[i], before_motion[i],
+                                              rest_time, duration - t, bound, still)
+                    if not fixed:
+                        bounded = False
+                        break
+                    rates[i] = tuple(r)
         if quiet_for >= rest_time - 1e-9 or still_windows >= 2:
             at_rest = True
             if stop_at_rest:
                 break
         else:
             at_rest = False
+            if window_end and bounded:
+                break
         if time.perf_counter() - t_wall > wall_limit:
             timed_out = True
             break
@@ -132,12 +199,16 @@ def _run(args, duration):
         name = instance_name(plant, b)
         poses.setdefault(name, {})[b.name()] = pose_json(X)
         disp = float(np.linalg.norm(X.translation() - X0.translation()))
-        rot = float(X0.rotation().InvertAndCompose(X.rotation()).ToAngleAxis().angle())
+        rot = _turned(X0, X)
         m = motion.setdefault(name, Motion(displacement_m=0.0, rotation_rad=0.0,
                                            start_z=float(X0.translation()[2]),
                                            end_z=float(X.translation()[2])))
         m.displacement_m = max(m.displacement_m, disp)
         m.rotation_rad = max(m.rotation_rad, rot)
+        if bounded and not at_rest:
+            r = rates.get(b.index(), (0.0, 0.0))
+            m.speed_bound = max(m.speed_bound, r[0])
+            m.angular_speed_bound = max(m.angular_speed_bound, r[1])
     steps = int(round(t / time_step))
     return SettleReply(
         poses=poses,
@@ -147,6 +218,7 @@ def _run(args, duration):
         at_rest=at_rest and not diverged,
         timed_out=timed_out,
         diverged=diverged,
+        bounded=bounded and not at_rest and not diverged and not timed_out,
         max_speed=v_max,
         max_angular_speed=w_max,
         max_penetration_m=_max_penetration(scene, ctx),

@@ -85,6 +85,9 @@ pub enum PipelineError {
     /// The written scene does not load or is not collision-free.
     #[error("scene check failed: {0}")]
     CheckFailed(String),
+    /// The thread running the scene check panicked.
+    #[error("scene check failed: its thread stopped unexpectedly")]
+    CheckThread,
     /// An export (MJCF, USD, GLB) could not be written.
     #[error(transparent)]
     Export(#[from] crate::export::ExportError),
@@ -495,30 +498,46 @@ fn finish_run(
         crate::export::write_exports(staging.path(), &state, &opts.exports)
     })?;
 
-    let check = if opts.drake_check {
-        let summary = timed(timings, "drake_check", || -> Result<_, PipelineError> {
-            let mut bridge = Bridge::from_env()?;
-            Ok(check_dir(&mut bridge, staging.path(), 1e-3)?)
-        })?;
-        if !summary.problems.is_empty() {
-            return Err(PipelineError::CheckFailed(summary.problems.join("; ")));
+    // The Drake check of the written files (its own bridge) runs beside the metrics (on the
+    // pool): the stability islands leave a core idle towards their end.
+    let staged = staging.path().to_path_buf();
+    let (check, metrics) = std::thread::scope(|scope| {
+        let check = opts.drake_check.then(|| {
+            scope.spawn(|| {
+                let t0 = Instant::now();
+                let summary = Bridge::from_env()
+                    .map_err(PipelineError::from)
+                    .and_then(|mut bridge| Ok(check_dir(&mut bridge, &staged, 1e-3)?));
+                (summary, t0.elapsed().as_secs_f64())
+            })
+        });
+        // --- metrics.json (the same code as `scenesmith eval`; STB needs the bridge) ---
+        let metrics = timed(timings, "metrics", || {
+            let defaults = EvalOptions::default();
+            let eval_opts = EvalOptions {
+                stability: defaults.stability.filter(|_| opts.stb),
+                ..defaults
+            };
+            eval::evaluate(&state, pool.as_ref(), &eval_opts)
+        });
+        let check = check.map(|h| h.join().map_err(|_| PipelineError::CheckThread));
+        (check, metrics)
+    });
+    let check = match check {
+        Some(joined) => {
+            let (summary, seconds) = joined?;
+            timings.insert("drake_check".to_string(), seconds);
+            let summary = summary?;
+            if !summary.problems.is_empty() {
+                return Err(PipelineError::CheckFailed(summary.problems.join("; ")));
+            }
+            state.scene.checks = Some(json!({ "drake": summary }));
+            scene_dir::write_scene_json(staging.path(), &state.scene)?;
+            Some(summary)
         }
-        state.scene.checks = Some(json!({ "drake": summary }));
-        scene_dir::write_scene_json(staging.path(), &state.scene)?;
-        Some(summary)
-    } else {
-        None
+        None => None,
     };
-
-    // --- metrics.json (the same code as `scenesmith eval`; STB needs the bridge) ---
-    let metrics = timed(timings, "metrics", || {
-        let defaults = EvalOptions::default();
-        let eval_opts = EvalOptions {
-            stability: defaults.stability.filter(|_| opts.stb),
-            ..defaults
-        };
-        eval::evaluate(&state, pool.as_ref(), &eval_opts)
-    })?;
+    let metrics = metrics?;
     eval::write_metrics(staging.path(), &metrics)?;
     // --- end of metrics ---
 

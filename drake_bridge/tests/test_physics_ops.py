@@ -251,3 +251,42 @@ def test_a_simulation_that_goes_non_finite_is_reported_not_raised(tmp_path, monk
                         lambda d, c: _DivergingSimulator(real(d, c), 0.2, "out of memory"))
     with pytest.raises(Exception, match="out of memory"):
         ops.call("simulate", dict(scene, duration=1.0))
+
+
+def test_a_verdict_is_fixed_only_when_the_rest_of_the_time_cannot_change_it():
+    from drake_bridge.settle import _verdict_fixed
+
+    bound, still = (0.01, 0.1), (2.5e-4, 2.5e-3)
+    # Creeping 0.2 mm per 0.5 s window (0.4 mm/s) with 4 s to go: 1 mm + 1.6 mm < 5 mm.
+    fixed, rates = _verdict_fixed((1e-3, 0.01), (2e-4, 1e-3), (2e-4, 1e-3), 0.5, 4.0, bound,
+                                  still)
+    assert fixed and rates == pytest.approx([4e-4, 2e-3])
+    # The same creep from 4 mm away would pass half the threshold by the end.
+    assert not _verdict_fixed((4e-3, 0.01), (2e-4, 1e-3), (2e-4, 1e-3), 0.5, 4.0, bound,
+                              still)[0]
+    # Turning faster each window (tipping) is never fixed, however small so far.
+    assert not _verdict_fixed((1e-4, 0.004), (0.0, 8e-3), (0.0, 3e-3), 0.5, 1.0, bound,
+                              still)[0]
+    # Chatter that varies within the still thresholds is not speeding up.
+    assert _verdict_fixed((1e-4, 0.004), (0.0, 3e-3), (0.0, 2e-3), 0.5, 1.0, bound, still)[0]
+    # Fallen and lying still: unstable whatever the rest of the time does.
+    assert _verdict_fixed((0.4, 1.2), (0.0, 0.0), (0.0, 0.0), 0.5, 4.0, bound, still)[0]
+    # ... but not while it still rolls away.
+    assert not _verdict_fixed((0.4, 1.2), (0.1, 1.0), (0.1, 1.0), 0.5, 4.0, bound, still)[0]
+
+
+def test_a_stability_run_stops_early_but_never_before_a_falling_box_has_fallen(tmp_path):
+    scene = write_scene(tmp_path, [
+        FLOOR,
+        ("pedestal", (0.0, 0.0, 0.25), (0.2, 0.2, 0.5), True),
+        ("base", (0.0, 0.0, 0.55), (0.1, 0.1, 0.1), False),
+        ("top", (0.13, 0.0, 0.651), (0.2, 0.1, 0.1), False),
+    ])
+    verdict = {"max_displacement_m": 0.01, "max_rotation_rad": 0.1}
+    r = ops.call("simulate", dict(scene, duration=5.0, stop_at_rest=True, floor_z=0.0,
+                                  rest_speed=5e-4, rest_angular_speed=5e-3, rest_time=0.5,
+                                  verdict=verdict))
+    assert r["sim_time"] < 4.0, "stopped before the end"
+    assert r["at_rest"] or r["bounded"]
+    assert r["motion"]["top"]["displacement_m"] > 0.3, "the overhanging box fell first"
+    assert r["motion"]["base"]["displacement_m"] < 5e-3

@@ -73,11 +73,14 @@ pub struct StabilityOptions {
     pub max_rotation_rad: f64,
     /// Contact configuration.
     pub contact: ContactOptions,
-    /// End the simulation early once every free body has stayed below `rest_speed` and
-    /// `rest_angular_speed` for `rest_time`. The stable/unstable decision then adds to every
-    /// object's displacement and rotation what the rest of the duration could still add at
-    /// those speeds (so the early stop can only make STB stricter); MD, XD and MR report the
-    /// motion actually simulated.
+    /// End an island's simulation early once every free body has stayed below `rest_speed`
+    /// and `rest_angular_speed` for `rest_time`, or once no body's verdict can change: each
+    /// is slowing or steady over the last two `rest_time` windows and, at the larger of their
+    /// paces, stays under half of both thresholds to the end (or is past one by more than it
+    /// could come back). The stable/unstable decision then adds to every object's
+    /// displacement and rotation what the rest of the duration could still add (at the rest
+    /// speeds, or at the object's own pace), so the early stop can only make STB stricter; MD,
+    /// XD and MR report the motion actually simulated.
     pub stop_at_rest: bool,
     /// Rest speed for the early stop, m/s.
     pub rest_speed: f64,
@@ -458,7 +461,7 @@ fn stb_row(s: &Stability) -> String {
         )
     } else if s.simulated_s + 1e-9 < s.options.duration_s {
         format!(
-            "; every island at rest by {:.2} s, remaining motion bounded",
+            "; every island stopped by {:.2} s, at rest or with no verdict left to change, the rest of the duration added at each object's pace",
             s.simulated_s
         )
     } else {

@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 use super::{EvalError, Stability, StabilityOptions, Unstable};
 use crate::physics::as_written::posed_objects;
 use crate::physics::collision::PosedObject;
-use crate::physics::protocol::Simulate;
+use crate::physics::protocol::{Simulate, VerdictBound};
 use crate::physics::settle::{SettleOptions, SettleReply, simulate_args};
 use crate::physics::workspace::{Role, Workspace};
 use crate::physics::{BridgePool, PhysicsError};
@@ -179,7 +179,13 @@ pub fn stabilities(
             islands[i][0],
             islands[i].len(),
             r.sim_time,
-            if r.at_rest { ", at rest" } else { "" },
+            if r.at_rest {
+                ", at rest"
+            } else if r.bounded {
+                ", verdicts fixed"
+            } else {
+                ""
+            },
             r.wall_s,
             r.ms_per_step,
             r.build_s
@@ -206,6 +212,10 @@ fn settle_options(opts: &StabilityOptions) -> SettleOptions {
         rest_time: opts.rest_time,
         contact: opts.contact,
         wall_limit: 3600.0,
+        verdict: Some(VerdictBound {
+            max_displacement_m: opts.max_displacement_m,
+            max_rotation_rad: opts.max_rotation_rad,
+        }),
         ..SettleOptions::default()
     }
 }
@@ -223,14 +233,17 @@ fn verdicts(opts: &StabilityOptions, islands: usize, results: &[SettleReply]) ->
         let cut_short = (result.timed_out && !result.at_rest) || result.diverged;
         timed_out += usize::from(result.timed_out && !result.at_rest && !result.diverged);
         diverged += usize::from(result.diverged);
-        // After an island stopped early at rest, the most the remaining time could add.
+        // After an island stopped early, the most the remaining time could add: at the rest
+        // speeds after a stop at rest, at each object's own pace after a bounded stop.
         let left = (opts.duration_s - result.sim_time).max(0.0);
-        let (extra_d, extra_r) = if result.at_rest {
-            (left * opts.rest_speed, left * opts.rest_angular_speed)
-        } else {
-            (0.0, 0.0)
-        };
         for (id, m) in &result.motion {
+            let (extra_d, extra_r) = if result.at_rest {
+                (left * opts.rest_speed, left * opts.rest_angular_speed)
+            } else if result.bounded {
+                (left * m.speed_bound, left * m.angular_speed_bound)
+            } else {
+                (0.0, 0.0)
+            };
             n += 1;
             sum_d += m.displacement_m;
             sum_r += m.rotation_rad;
@@ -290,6 +303,8 @@ mod tests {
                         rotation_rad: 0.0,
                         start_z: 0.0,
                         end_z: 0.0,
+                        speed_bound: 0.0,
+                        angular_speed_bound: 0.0,
                     };
                     (id.to_string(), m)
                 })
@@ -313,6 +328,7 @@ mod tests {
             sim_s: 1.0,
             cache: CacheStats { hits: 0, misses: 1 },
             diverged: false,
+            bounded: false,
         }
     }
 
@@ -352,5 +368,24 @@ mod tests {
         assert_eq!(s.stable, 0);
         let s = verdicts(&opts, 1, &[island(&[("cup", 0.007)], 0.5, true, false)]);
         assert_eq!(s.stable, 1);
+    }
+
+    #[test]
+    fn a_bounded_stop_adds_each_objects_own_pace() {
+        let opts = StabilityOptions::default();
+        // Stopped at 1 s with 4 s to go: the cup creeping at 1 mm/s could reach 6 mm + 4 mm,
+        // the plate at rest stays at 6 mm.
+        let mut r = island(&[("cup", 0.006), ("plate", 0.006)], 1.0, false, false);
+        r.bounded = true;
+        if let Some(m) = r.motion.get_mut("cup") {
+            m.speed_bound = 0.001;
+        }
+        let s = verdicts(&opts, 1, &[r]);
+        let ids: Vec<&str> = s.unstable.iter().map(|u| u.id.as_str()).collect();
+        assert_eq!(ids, ["cup"]);
+        assert!(
+            (s.md_mm - 6.0).abs() < 1e-9,
+            "MD reports the simulated motion"
+        );
     }
 }

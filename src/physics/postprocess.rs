@@ -416,6 +416,14 @@ fn settled_pose(state: &SceneState, result: &SettleReply, id: &str) -> Option<Po
 }
 
 fn subset_report(subset: &str, r: &SettleReply) -> SubsetReport {
+    tracing::info!(
+        "settle {subset} ({} free): {:.2} s simulated{} in {:.1} s wall ({:.1} ms/step)",
+        r.free_bodies,
+        r.sim_time,
+        if r.at_rest { ", at rest" } else { "" },
+        r.wall_s,
+        r.ms_per_step
+    );
     SubsetReport {
         subset: subset.to_string(),
         free_bodies: r.free_bodies,

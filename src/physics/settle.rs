@@ -11,7 +11,7 @@ use std::path::Path;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
-use super::protocol::{ContactArgs, SceneFiles, SimulateArgs, SimulationArgs};
+use super::protocol::{ContactArgs, SceneFiles, SimulateArgs, SimulationArgs, VerdictBound};
 pub use super::protocol::{Motion, SettleReply};
 
 /// Simulated time between the bridge's rest checks, seconds.
@@ -79,6 +79,8 @@ pub struct SettleOptions {
     pub contact: ContactOptions,
     /// Floor height; bodies more than 0.5 m below it are ignored by the rest test.
     pub floor_z: Option<f64>,
+    /// Stability thresholds: with `stop_at_rest`, also stop once no verdict can change.
+    pub verdict: Option<VerdictBound>,
 }
 
 impl Default for SettleOptions {
@@ -93,6 +95,7 @@ impl Default for SettleOptions {
             wall_limit: 300.0,
             contact: ContactOptions::default(),
             floor_z: Some(0.0),
+            verdict: None,
         }
     }
 }
@@ -115,6 +118,7 @@ pub fn simulate_args(directives: &Path, package_xml: &Path, opts: &SettleOptions
                 approximation: None,
             },
             floor_z: opts.floor_z,
+            verdict: opts.verdict,
         },
         duration: opts.max_time,
         stop_at_rest: opts.stop_at_rest,

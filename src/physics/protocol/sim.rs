@@ -114,6 +114,19 @@ pub struct SimulationArgs {
     /// floor test.
     #[serde(default)]
     pub floor_z: Option<f64>,
+    /// The verdict thresholds of a stability run: with `stop_at_rest`, the simulation also
+    /// stops once the rest of the duration cannot change any body's verdict (`bounded`).
+    #[serde(default)]
+    pub verdict: Option<VerdictBound>,
+}
+
+/// A stability verdict's thresholds: stable below both.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct VerdictBound {
+    /// Displacement, metres.
+    pub max_displacement_m: f64,
+    /// Rotation, radians.
+    pub max_rotation_rad: f64,
 }
 
 /// Arguments of `settle`.
@@ -155,6 +168,13 @@ pub struct Motion {
     pub start_z: f64,
     /// ... and at the end.
     pub end_z: f64,
+    /// After a `bounded` stop: the most this instance moved per second over the last two rest
+    /// windows (what the rest of the duration could add at that pace), m/s; else 0.
+    #[serde(default)]
+    pub speed_bound: f64,
+    /// ... and turned, rad/s.
+    #[serde(default)]
+    pub angular_speed_bound: f64,
 }
 
 /// The bridge's reply to `settle` / `simulate`.
@@ -198,6 +218,10 @@ pub struct SettleReply {
     /// the poses and motion are those at the start of the last rest window.
     #[serde(default)]
     pub diverged: bool,
+    /// Stopped before the duration because no body's verdict could change any more (see
+    /// `SimulationArgs::verdict`); each motion then carries its speed bounds.
+    #[serde(default)]
+    pub bounded: bool,
 }
 
 /// The projection's solver choice.
