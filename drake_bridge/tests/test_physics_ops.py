@@ -256,23 +256,21 @@ def test_a_simulation_that_goes_non_finite_is_reported_not_raised(tmp_path, monk
 def test_a_verdict_is_fixed_only_when_the_rest_of_the_time_cannot_change_it():
     from drake_bridge.settle import _verdict_fixed
 
-    bound, still = (0.01, 0.1), (2.5e-4, 2.5e-3)
+    bound = (0.01, 0.1)
     # Creeping 0.2 mm per 0.5 s window (0.4 mm/s) with 4 s to go: 1 mm + 1.6 mm < 5 mm.
-    fixed, rates = _verdict_fixed((1e-3, 0.01), (2e-4, 1e-3), (2e-4, 1e-3), 0.5, 4.0, bound,
-                                  still)
-    assert fixed and rates == pytest.approx([4e-4, 2e-3])
+    fixed, pace = _verdict_fixed((1e-3, 0.01), (2e-4, 1e-3), (2e-4, 1e-3), 0.5, 4.0, bound)
+    assert fixed and pace == pytest.approx([4e-4, 2e-3])
     # The same creep from 4 mm away would pass half the threshold by the end.
-    assert not _verdict_fixed((4e-3, 0.01), (2e-4, 1e-3), (2e-4, 1e-3), 0.5, 4.0, bound,
-                              still)[0]
-    # Turning faster each window (tipping) is never fixed, however small so far.
-    assert not _verdict_fixed((1e-4, 0.004), (0.0, 8e-3), (0.0, 3e-3), 0.5, 1.0, bound,
-                              still)[0]
-    # Chatter that varies within the still thresholds is not speeding up.
-    assert _verdict_fixed((1e-4, 0.004), (0.0, 3e-3), (0.0, 2e-3), 0.5, 1.0, bound, still)[0]
-    # Fallen and lying still: unstable whatever the rest of the time does.
-    assert _verdict_fixed((0.4, 1.2), (0.0, 0.0), (0.0, 0.0), 0.5, 4.0, bound, still)[0]
+    assert not _verdict_fixed((4e-3, 0.01), (2e-4, 1e-3), (2e-4, 1e-3), 0.5, 4.0, bound)[0]
+    # Tipping at a uniform 0.01 rad/s^2 from rest: 5 mrad after 1 s, windows of 1.25 and
+    # 3.75 mrad, 125 mrad at 5 s. Extrapolated with its growth it is not fixed.
+    assert not _verdict_fixed((1e-4, 0.005), (0.0, 3.75e-3), (0.0, 1.25e-3), 0.5, 4.0, bound)[0]
+    # Chatter a little larger than the window before, 1 s to go: 4 + 9 mrad.
+    assert _verdict_fixed((1e-4, 0.004), (0.0, 3e-3), (0.0, 2e-3), 0.5, 1.0, bound)[0]
+    # Fallen and lying still: unstable whatever the rest of the time does ...
+    assert _verdict_fixed((0.4, 1.2), (0.0, 0.0), (0.0, 0.0), 0.5, 4.0, bound)[0]
     # ... but not while it still rolls away.
-    assert not _verdict_fixed((0.4, 1.2), (0.1, 1.0), (0.1, 1.0), 0.5, 4.0, bound, still)[0]
+    assert not _verdict_fixed((0.4, 1.2), (0.1, 1.0), (0.1, 1.0), 0.5, 4.0, bound)[0]
 
 
 def test_a_stability_run_stops_early_but_never_before_a_falling_box_has_fallen(tmp_path):

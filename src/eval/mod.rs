@@ -74,13 +74,13 @@ pub struct StabilityOptions {
     /// Contact configuration.
     pub contact: ContactOptions,
     /// End an island's simulation early once every free body has stayed below `rest_speed`
-    /// and `rest_angular_speed` for `rest_time`, or once no body's verdict can change: each
-    /// is slowing or steady over the last two `rest_time` windows and, at the larger of their
-    /// paces, stays under half of both thresholds to the end (or is past one by more than it
-    /// could come back). The stable/unstable decision then adds to every object's
-    /// displacement and rotation what the rest of the duration could still add (at the rest
-    /// speeds, or at the object's own pace), so the early stop can only make STB stricter; MD,
-    /// XD and MR report the motion actually simulated.
+    /// and `rest_angular_speed` for `rest_time`, or once no body's verdict can change: its
+    /// last two `rest_time` windows, extrapolated to the end (from the larger window, growing
+    /// each window as much as the last one grew), keep it under half of both thresholds (or it
+    /// is past one by more than that could bring back). The stable/unstable decision adds to
+    /// every object's displacement and rotation what the rest of the duration could still add
+    /// (at the rest speeds, or that extrapolation), so the early stop can only make STB
+    /// stricter; MD, XD and MR report the motion actually simulated.
     pub stop_at_rest: bool,
     /// Rest speed for the early stop, m/s.
     pub rest_speed: f64,

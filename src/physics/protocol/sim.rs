@@ -168,8 +168,9 @@ pub struct Motion {
     pub start_z: f64,
     /// ... and at the end.
     pub end_z: f64,
-    /// After a `bounded` stop: the most this instance moved per second over the last two rest
-    /// windows (what the rest of the duration could add at that pace), m/s; else 0.
+    /// After a `bounded` stop: what the rest of the duration could still add to its
+    /// displacement (its last two rest windows extrapolated, growing as they grew), per second
+    /// of the time left, m/s; else 0.
     #[serde(default)]
     pub speed_bound: f64,
     /// ... and turned, rad/s.
