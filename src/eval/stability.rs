@@ -45,46 +45,60 @@ fn root(parent: &mut [usize], mut i: usize) -> usize {
 
 /// The islands of free objects (ids in scene order), largest first.
 pub fn islands(state: &SceneState) -> Vec<Vec<String>> {
-    let posed: Vec<PosedObject> = posed_objects(&state.scene, &state.assets);
-    let bounds: BTreeMap<&str, ([f64; 3], [f64; 3])> =
-        posed.iter().map(|p| (p.id.as_str(), p.bounds)).collect();
     let free: Vec<&SceneObject> = state.scene.objects.iter().filter(|o| is_free(o)).collect();
     let index: BTreeMap<&str, usize> = free
         .iter()
         .enumerate()
         .map(|(i, o)| (o.id.as_str(), i))
         .collect();
-    let mut parent: Vec<usize> = (0..free.len()).collect();
+    let mut links = Vec::new();
+    for (i, o) in free.iter().enumerate() {
+        if let Support::Object { parent: p, .. } = &o.support
+            && let Some(&j) = index.get(p.as_str())
+        {
+            links.push((i, j));
+        }
+    }
+    let ids: Vec<&str> = free.iter().map(|o| o.id.as_str()).collect();
+    groups_near(state, &ids, &links, ISLAND_GAP_M)
+}
+
+/// `ids` grouped: two share a group when they are linked (pairs of indices into `ids`) or
+/// their collision bounds come within `gap` of each other. Ids in the given order within a
+/// group, largest group first.
+pub fn groups_near(
+    state: &SceneState,
+    ids: &[&str],
+    links: &[(usize, usize)],
+    gap: f64,
+) -> Vec<Vec<String>> {
+    let posed: Vec<PosedObject> = posed_objects(&state.scene, &state.assets);
+    let bounds: BTreeMap<&str, ([f64; 3], [f64; 3])> =
+        posed.iter().map(|p| (p.id.as_str(), p.bounds)).collect();
+    let mut parent: Vec<usize> = (0..ids.len()).collect();
     let join = |parent: &mut Vec<usize>, a: usize, b: usize| {
         let (ra, rb) = (root(parent, a), root(parent, b));
         if ra != rb {
             parent[ra.max(rb)] = ra.min(rb);
         }
     };
-    for (i, o) in free.iter().enumerate() {
-        if let Support::Object { parent: p, .. } = &o.support
-            && let Some(&j) = index.get(p.as_str())
-        {
-            join(&mut parent, i, j);
-        }
+    for &(i, j) in links {
+        join(&mut parent, i, j);
     }
-    for i in 0..free.len() {
-        for j in i + 1..free.len() {
-            let (Some(a), Some(b)) = (
-                bounds.get(free[i].id.as_str()),
-                bounds.get(free[j].id.as_str()),
-            ) else {
+    for i in 0..ids.len() {
+        for j in i + 1..ids.len() {
+            let (Some(a), Some(b)) = (bounds.get(ids[i]), bounds.get(ids[j])) else {
                 continue;
             };
-            if near(a, b, ISLAND_GAP_M) {
+            if near(a, b, gap) {
                 join(&mut parent, i, j);
             }
         }
     }
     let mut groups: BTreeMap<usize, Vec<String>> = BTreeMap::new();
-    for (i, o) in free.iter().enumerate() {
+    for (i, id) in ids.iter().enumerate() {
         let r = root(&mut parent, i);
-        groups.entry(r).or_default().push(o.id.clone());
+        groups.entry(r).or_default().push(id.to_string());
     }
     let mut out: Vec<Vec<String>> = groups.into_values().collect();
     // Largest first: the pool starts the longest simulations first.

@@ -3,7 +3,7 @@
 //! Two phases, each *project -> settle -> remove what fell -> project again*:
 //! - **furniture**: furniture free (sliding on the floor in the projections), architecture and
 //!   wall/ceiling objects fixed, small objects left out; whatever rests on a piece of furniture
-//!   moves with it;
+//!   moves with it; settling runs one subset scene per group of pieces close together;
 //! - **manipuland**: furniture welded, small objects free (3-D projection, each kept over its
 //!   support surface); settling runs one subset scene per supporting entity (the entity welded,
 //!   its small objects free; small objects on the floor share one subset with all furniture
@@ -33,6 +33,7 @@ use super::protocol::Simulate;
 use super::removal::{RemovalRules, furniture_verdict, manipuland_verdict};
 use super::settle::{SettleOptions, SettleReply, simulate_args};
 use super::workspace::{Role, Workspace};
+use crate::eval::stability::{ISLAND_GAP_M, groups_near};
 use crate::scene::{ObjectKind, PlacedAgain, Pose, Scene, SceneObject, Support};
 use crate::state::SceneState;
 
@@ -438,8 +439,8 @@ fn subset_report(subset: &str, r: &SettleReply) -> SubsetReport {
 const FURNITURE_STAGE: &str = "post_process/furniture";
 const MANIPULAND_STAGE: &str = "post_process/manipuland";
 
-/// Furniture phase: project furniture (sliding), settle it per room, remove what fell over,
-/// project again.
+/// Furniture phase: project furniture (sliding), settle it per group of pieces close together
+/// ([`furniture_subsets`]), remove what fell over, project again.
 pub fn furniture_phase(
     state: &mut SceneState,
     pool: Option<&BridgePool>,
@@ -468,33 +469,7 @@ pub fn furniture_phase(
     report.projection = project(state)?;
 
     if let (Some(pool), Some(ws)) = (pool, workspace) {
-        let mut subsets = Vec::new();
-        for room in &state.scene.rooms {
-            let in_room = |o: &crate::scene::SceneObject| o.room == room.id;
-            if !state
-                .scene
-                .objects
-                .iter()
-                .any(|o| in_room(o) && is_free_furniture(o))
-            {
-                continue;
-            }
-            let members: BTreeMap<String, Role> = state
-                .scene
-                .objects
-                .iter()
-                .filter(|o| in_room(o) && o.kind != ObjectKind::Manipuland)
-                .map(|o| {
-                    let role = if is_free_furniture(o) {
-                        Role::Free
-                    } else {
-                        Role::Welded
-                    };
-                    (o.id.clone(), role)
-                })
-                .collect();
-            subsets.push((room.id.clone(), members));
-        }
+        let subsets = furniture_subsets(state);
         let t = Instant::now();
         let results = settle_subsets(state, pool, ws, &subsets, &opts.settle)?;
         report.settle_seconds = t.elapsed().as_secs_f64();
@@ -529,6 +504,38 @@ pub fn furniture_phase(
         report.cleanup = project(state)?;
     }
     Ok(report)
+}
+
+/// The furniture phase's subset scenes: per room, one per group of free pieces within
+/// [`ISLAND_GAP_M`] of each other (pieces farther apart cannot touch without first moving that
+/// far, so the groups settle apart, in parallel, and each faster than the whole room: Drake's
+/// cost per step grows faster than the body count), with the room's fixed objects welded.
+fn furniture_subsets(state: &SceneState) -> Vec<(String, BTreeMap<String, Role>)> {
+    let mut subsets = Vec::new();
+    for room in &state.scene.rooms {
+        let in_room = |o: &&SceneObject| o.room == room.id;
+        let free: Vec<&str> = state
+            .scene
+            .objects
+            .iter()
+            .filter(|o| in_room(o) && is_free_furniture(o))
+            .map(|o| o.id.as_str())
+            .collect();
+        let fixed: Vec<&SceneObject> = state
+            .scene
+            .objects
+            .iter()
+            .filter(|o| in_room(o) && !is_free_furniture(o) && o.kind != ObjectKind::Manipuland)
+            .collect();
+        for group in groups_near(state, &free, &[], ISLAND_GAP_M) {
+            let name = format!("{}/{}", room.id, group[0]);
+            let mut members: BTreeMap<String, Role> =
+                fixed.iter().map(|o| (o.id.clone(), Role::Welded)).collect();
+            members.extend(group.into_iter().map(|id| (id, Role::Free)));
+            subsets.push((name, members));
+        }
+    }
+    subsets
 }
 
 /// The furniture (or other non-small object) a small object ultimately rests on, or `floor`.
