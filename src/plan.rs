@@ -286,12 +286,19 @@ fn pick(range: [u32; 2], t: f64) -> u32 {
     lo + ((hi - lo) as f64 * t).round() as u32
 }
 
+/// At most this many of one thing that is neither kept in numbers nor one per parent (a
+/// pitcher, a vase, a fruit bowl) per supporting piece, while the list has things kept in
+/// numbers to take the rest.
+pub(crate) const FEW_PER_PARENT: u32 = 4;
+
 /// Splits `total` small objects over candidate nouns (most typical first): the first takes
 /// half when it is a thing kept in numbers ([`kept_in_numbers`]: a bookshelf is mostly books,
 /// a cupboard mostly plates, not a sideboard mostly vases), the rest cycle through the list in
-/// order. A noun for
-/// which `single` holds (appliances, electronics, lamps) never takes the half and stops at
-/// `singles_cap` (one per parent: a counter has one coffee machine, not half a dozen).
+/// order. A noun for which `single` holds (appliances, electronics, lamps) never takes the
+/// half and stops at `singles_cap` (the number of parents: a counter has one coffee machine,
+/// not half a dozen); one that is neither single nor kept in numbers stops at
+/// [`FEW_PER_PARENT`] per parent while a noun kept in numbers is on the list (a sideboard's
+/// pitchers and glasses: a few pitchers, the rest glasses).
 pub(crate) fn split_counts(
     total: u32,
     items: &[&str],
@@ -302,11 +309,11 @@ pub(crate) fn split_counts(
     if items.is_empty() || total == 0 {
         return counts;
     }
-    let first = if items.len() > 1
-        && total >= 4
-        && !single(items[0])
-        && kept_in_numbers(crate::words::lexicon(), items[0])
-    {
+    let lex = crate::words::lexicon();
+    let numerous = |noun: &str| !single(noun) && kept_in_numbers(lex, noun);
+    let few =
+        |noun: &str| !single(noun) && !numerous(noun) && items.iter().any(|other| numerous(other));
+    let first = if items.len() > 1 && total >= 4 && numerous(items[0]) {
         total.div_ceil(2)
     } else {
         0
@@ -324,6 +331,9 @@ pub(crate) fn split_counts(
             }
             match counts.iter_mut().find(|(n, _)| n == noun) {
                 Some((_, c)) if single(noun) && *c >= singles_cap => continue,
+                Some((_, c)) if few(noun) && *c >= FEW_PER_PARENT * singles_cap.max(1) => {
+                    continue;
+                }
                 Some((_, c)) => *c += 1,
                 None => counts.push((noun.to_string(), 1)),
             }
@@ -331,6 +341,13 @@ pub(crate) fn split_counts(
             added = true;
         }
         if !added {
+            // Every noun is at its cap: what is left goes to the first thing kept in numbers.
+            if let Some(noun) = items.iter().copied().find(|n| numerous(n)) {
+                match counts.iter_mut().find(|(n, _)| n == noun) {
+                    Some((_, c)) => *c += left,
+                    None => counts.push((noun.to_string(), left)),
+                }
+            }
             break;
         }
     }
@@ -510,6 +527,26 @@ mod tests {
         plan.all_wants()
             .find(|w| w.noun == noun)
             .unwrap_or_else(|| panic!("no {noun} in {plan:#?}"))
+    }
+
+    #[test]
+    fn a_few_pitchers_and_the_rest_glasses() {
+        let lex = crate::words::lexicon();
+        assert!(kept_in_numbers(lex, "glass") && !kept_in_numbers(lex, "pitcher"));
+        let no_single = |_: &str| false;
+        let get = |c: &[(String, u32)], n: &str| c.iter().find(|(m, _)| m == n).map_or(0, |x| x.1);
+        // A sideboard's 30: at most 4 pitchers, the total kept.
+        let c = split_counts(30, &["pitcher", "glass"], no_single, 1);
+        assert_eq!((get(&c, "pitcher"), get(&c, "glass")), (4, 26));
+        // Over two parents the cap doubles; with nothing kept in numbers there is no cap.
+        let c = split_counts(30, &["pitcher", "glass"], no_single, 2);
+        assert_eq!(get(&c, "pitcher"), 8);
+        let c = split_counts(12, &["vase", "candlestick"], no_single, 1);
+        assert_eq!(c.iter().map(|x| x.1).sum::<u32>(), 12);
+        // Books first take half; vases and boxes stop at 4 and the books take the rest.
+        let c = split_counts(30, &["book", "vase", "box"], no_single, 1);
+        assert_eq!(c.iter().map(|x| x.1).sum::<u32>(), 30);
+        assert!(get(&c, "vase") <= 4 && get(&c, "book") >= 15);
     }
 
     /// Counts that saturate in the reading (4000000000 desks) stay bounded in the plan.
