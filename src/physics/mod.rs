@@ -20,6 +20,7 @@ pub mod bridge;
 pub mod check;
 pub mod collision;
 pub mod drake_projection;
+pub mod groups;
 pub mod pool;
 pub mod postprocess;
 pub mod projection;

@@ -25,6 +25,7 @@ use serde::Serialize;
 use super::PhysicsError;
 use super::as_written::posed_objects;
 use super::collision::penetrating_pairs;
+use super::groups::{ISLAND_GAP_M, groups_near};
 use super::pool::BridgePool;
 use super::projection::{
     Movable, ProjectionOptions, ProjectionReport, XyRegion, apply_offsets, project_objects,
@@ -33,7 +34,6 @@ use super::protocol::Simulate;
 use super::removal::{RemovalRules, furniture_verdict, manipuland_verdict};
 use super::settle::{SettleOptions, SettleReply, simulate_args};
 use super::workspace::{Role, Workspace};
-use crate::eval::stability::{ISLAND_GAP_M, groups_near};
 use crate::scene::{ObjectKind, PlacedAgain, Pose, Scene, SceneObject, Support};
 use crate::state::SceneState;
 
