@@ -162,7 +162,9 @@ fn pct(a: usize, b: usize) -> f64 {
     }
 }
 
-fn score_file(path: &str, title: &str, misses_env: &str) -> Score {
+/// `read_env` names the variable that lists ids whose whole reading is printed (the dev set
+/// only: the held-out prompts are never looked at).
+fn score_file(path: &str, title: &str, misses_env: &str, read_env: Option<&str>) -> Score {
     let text = std::fs::read_to_string(path).unwrap();
     let mut s = Score::default();
     let mut n = 0;
@@ -172,6 +174,12 @@ fn score_file(path: &str, title: &str, misses_env: &str) -> Score {
         let kind = v["kind"].as_str().unwrap();
         let reqs = v["requirements"].as_array().cloned().unwrap_or_default();
         let r = prompt::read(v["prompt"].as_str().unwrap());
+        if read_env
+            .and_then(|e| std::env::var(e).ok())
+            .is_some_and(|want| want.split(',').any(|w| w == id))
+        {
+            println!("READING {id} {}", serde_json::to_string(&r).unwrap());
+        }
         check(id, kind, &r, &reqs, &mut s);
         n += 1;
     }
@@ -227,6 +235,7 @@ fn reader_on_held_out_long_prompts() {
         "tests/fixtures/heldout_long.jsonl",
         "reader on held-out long prompts",
         "HELDOUT_MISSES",
+        None,
     );
     assert_floors(&s, 82.0, 88.0, 91.0);
 }
@@ -234,10 +243,17 @@ fn reader_on_held_out_long_prompts() {
 /// The development set of the same kind: the one the reader may be tuned on.
 #[test]
 fn reader_on_dev_long_prompts() {
+    // A prompt of your own to look at while working on the reader (`READ_TEXT="..." cargo
+    // test --test prompt_heldout_long dev -- --nocapture`).
+    if let Ok(text) = std::env::var("READ_TEXT") {
+        let r = prompt::read(&text);
+        println!("READING text {}", serde_json::to_string(&r).unwrap());
+    }
     let s = score_file(
         "tests/fixtures/devlong.jsonl",
         "reader on dev long prompts",
         "DEVLONG_MISSES",
+        Some("DEVLONG_READ"),
     );
     assert_floors(&s, 92.0, 94.0, 97.0);
 }

@@ -290,7 +290,12 @@ fn wordnet_verb(lex: &Lexicon, tokens: &[Token], i: usize, out: &[Chunk]) -> Opt
     let w = tokens.get(i)?.text.as_str();
     let after_np = matches!(out.last().map(|c| &c.item), Some(Item::Np(_)));
     let inflected = w.ends_with('s') || w.ends_with("ed");
-    if !after_np || !inflected {
+    // "Three plinths each support a sculpture": after "each" of a plural subject the verb
+    // is in its base form.
+    let after_each = out.len() >= 2
+        && matches!(out[out.len() - 1].item, Item::Each)
+        && matches!(out[out.len() - 2].item, Item::Np(_));
+    if !(after_np && inflected) && !after_each {
         return None;
     }
     let wn = crate::words::wordnet::wordnet();

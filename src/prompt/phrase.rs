@@ -12,6 +12,10 @@ use crate::words::ground::{self, Verdict};
 use crate::words::lexicon::Lexicon;
 use crate::words::tokens::Token;
 
+/// Parts of the building that name where a thing goes when they stand before its noun
+/// ("floor cushion", "wall mirror", "ceiling hook", "window box", "door wreath", "corner shelf").
+const BUILDING_PART_MODIFIERS: [&str; 6] = ["floor", "wall", "ceiling", "window", "door", "corner"];
+
 /// Pronouns the interpreter resolves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Pronoun {
@@ -520,7 +524,10 @@ impl<'a> Phrase<'a> {
             && lex.noun_at(tokens, j).is_none()
             && self.kb.room_type_at(tokens, j).is_none()
             && !lex.is_function_word(w)
-            && lex.landmark(w).is_none()
+            // "four floor cushions", "a door wreath": a part of the building in its base form
+            // right before a lexicon noun says where the thing goes; other landmarks ("the
+            // back", "the middle") do not modify.
+            && (lex.landmark(w).is_none() || BUILDING_PART_MODIFIERS.contains(&w))
             && crate::words::wordnet::wordnet().is_lemma(w, crate::words::wordnet::Pos::Noun)
             && lex
                 .noun_at(tokens, j + 1)
@@ -1651,7 +1658,61 @@ fn placed(lex: &Lexicon, tokens: &[Token], start: usize, next: usize) -> bool {
         (start.saturating_sub(3)..start).any(|k| spatial_at(k).is_some_and(|n| k + n == start));
     let before = preposition_before || start.checked_sub(1).is_some_and(placing_verb);
     let of_next = word(tokens, next) == Some("of");
-    !of_next && (before || spatial_at(next).is_some() || placing_verb(next))
+    !of_next
+        && (before
+            || (start..next).any(|k| of_group(lex, tokens, k))
+            || spatial_at(next).is_some()
+            || placing_verb(next)
+            || listed_placed(lex, tokens, start))
+}
+
+/// "a stack of flyers", "full of logbooks": the phrase at `start` follows "of" after a group
+/// word or "full".
+fn of_group(lex: &Lexicon, tokens: &[Token], start: usize) -> bool {
+    start >= 2
+        && word(tokens, start - 1) == Some("of")
+        && word(tokens, start - 2).is_some_and(|g| g == "full" || lex.group(g).is_some())
+}
+
+/// Whether the list the phrase at `start` ends is placed: back over the list's earlier
+/// items ("shelves hold books and logbooks", "a stack of flyers and invoices", "full of sea
+/// charts and logbooks") to a placing verb, a spatial preposition, or "of" after a group
+/// word or "full". Only a phrase after "and", "or" or a comma is a later item.
+fn listed_placed(lex: &Lexicon, tokens: &[Token], start: usize) -> bool {
+    let joins = |k: usize| {
+        tokens
+            .get(k)
+            .is_some_and(|t| t.text == "," || matches!(t.text.as_str(), "and" | "or"))
+    };
+    if start == 0 || !joins(start - 1) {
+        return false;
+    }
+    let placing = |w: &str| {
+        lex.verb(w)
+            .is_some_and(|class| !matches!(class, "inspired" | "styled" | "made" | "other"))
+    };
+    for k in (start.saturating_sub(14)..start).rev() {
+        let Some(w) = word(tokens, k) else {
+            if tokens[k].text == "," {
+                continue;
+            }
+            return false;
+        };
+        if w == "of" {
+            return of_group(lex, tokens, k + 1);
+        }
+        if placing(w)
+            || lex
+                .preposition_at(tokens, k)
+                .is_some_and(|(_, class)| class != "from")
+        {
+            return true;
+        }
+        if lex.verb(w).is_some() || lex.is_relative(w) {
+            return false;
+        }
+    }
+    false
 }
 
 /// A room's name as the prompt gives it: the room words with the kind words before them

@@ -780,3 +780,33 @@ fn with_nearest_object_joined_subjects_and_seats_at_their_table() {
         Some("chandelier")
     );
 }
+
+#[test]
+fn a_building_part_before_a_noun_says_where_it_goes_and_keeps_the_count() {
+    let r = read("A tatami room with a low table and four floor cushions around it.");
+    let cushion = find(&r, "cushion");
+    assert_eq!(cushion.count, Count::Exactly(4));
+    assert_eq!(cushion.noun, "floor cushion");
+    let r = read("In the corner, a lamp stands. A rug covers the floor beside the bed.");
+    assert_eq!(find(&r, "rug").count, Count::Exactly(1));
+    assert_eq!(rel(&r, "rug", RelationKind::NextTo).as_deref(), Some("bed"));
+}
+
+#[test]
+fn each_before_a_verb_in_its_base_form_is_per_subject() {
+    let r = read("A gallery. Three plinths each support a small bronze sculpture.");
+    let i = index(&r, "sculpture");
+    assert_eq!(r.total(i), Count::Exactly(3));
+}
+
+#[test]
+fn written_matter_is_paper_where_the_sentence_places_it() {
+    let r = read("A study. The shelf holds books and logbooks, and the desk has a stack of flyers.");
+    assert!(r.mentions.iter().any(|m| m.noun == "logbook"), "{:?}", r.mentions);
+    assert!(r.mentions.iter().any(|m| m.noun == "flyer"), "{:?}", r.mentions);
+    let r = read("A study with a desk. It reflects a love of poetry and literature.");
+    assert_eq!(
+        r.mentions.iter().map(|m| m.noun.as_str()).collect::<Vec<_>>(),
+        ["desk"]
+    );
+}

@@ -30,6 +30,8 @@ struct RulesFile {
     min_room_share: f64,
     depiction_under: Vec<String>,
     building_under: Vec<String>,
+    document_under: Vec<String>,
+    document_family: String,
 }
 
 /// Errors loading the grounding rules.
@@ -61,6 +63,9 @@ pub struct Rules {
     pub min_room_share: f64,
     depiction_under: Vec<SynsetId>,
     building_under: Vec<SynsetId>,
+    document_under: Vec<SynsetId>,
+    /// The family printed matter is built as when no family is near along its hypernyms.
+    pub document_family: String,
 }
 
 impl Rules {
@@ -90,6 +95,8 @@ impl Rules {
             min_room_share: f.min_room_share,
             depiction_under: resolve(&f.depiction_under)?,
             building_under: resolve(&f.building_under)?,
+            document_under: resolve(&f.document_under)?,
+            document_family: f.document_family,
         })
     }
 
@@ -119,6 +126,12 @@ impl Rules {
     /// it is "of" is its subject, not a thing in the room.
     pub fn depicts(&self, s: SynsetId) -> bool {
         self.under_any(s, &self.depiction_under)
+    }
+
+    /// A sense that names written or printed matter ("logbook", "flyer", "invoice"): in a
+    /// room, paper.
+    pub fn document(&self, s: SynsetId) -> bool {
+        self.under_any(s, &self.document_under)
     }
 
     /// A sense that names a room, a building or a place of business.
@@ -178,6 +191,9 @@ pub struct NounInfo {
     /// Whether a physical sense is excluded as larger than a room or as the architecture
     /// itself (a building, a ship, a floor).
     pub structure: bool,
+    /// Senses that name written or printed matter and no placeable thing, heaviest first
+    /// ("logbook": a record book): a sheet or a book where a sentence places one.
+    pub documents: Vec<SynsetId>,
 }
 
 /// The WordNet noun lemma of a word or multiword phrase ("shelves" -> "shelf"), if it is a
@@ -218,6 +234,7 @@ pub fn noun_info(words: &str) -> Option<NounInfo> {
     let mut roomed = 0.0;
     let mut heaviest: Option<(f64, SynsetId)> = None;
     let mut structure = false;
+    let mut documents: Vec<(f64, usize, SynsetId)> = Vec::new();
     for (rank, s) in senses.iter().enumerate() {
         let w = f64::from(s.count) + r.count_smoothing;
         total += w;
@@ -226,6 +243,8 @@ pub fn noun_info(words: &str) -> Option<NounInfo> {
             placeable.push((w, rank, s.synset));
         } else if r.under_any(s.synset, &r.object_under) {
             structure = true;
+        } else if r.document(s.synset) {
+            documents.push((w, rank, s.synset));
         }
         if r.roomlike(s.synset) {
             roomlike = true;
@@ -236,6 +255,7 @@ pub fn noun_info(words: &str) -> Option<NounInfo> {
         }
     }
     placeable.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    documents.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
     Some(NounInfo {
         lemma,
         share: if total > 0.0 { placed / total } else { 0.0 },
@@ -244,6 +264,7 @@ pub fn noun_info(words: &str) -> Option<NounInfo> {
         room_share: if total > 0.0 { roomed / total } else { 0.0 },
         lexname: heaviest.map_or_else(String::new, |(_, s)| wn.lexname(s).to_string()),
         structure,
+        documents: documents.into_iter().map(|(_, _, s)| s).collect(),
     })
 }
 
@@ -308,6 +329,11 @@ pub fn verdict(words: &str) -> Verdict {
         },
         Some(info) if info.share >= r.min_share => Verdict::Object,
         Some(info) if info.share >= r.min_share_with_evidence => Verdict::NeedsEvidence,
+        // "shelves hold logbooks", "a stack of flyers": written matter is paper where the
+        // sentence places it; "a love of poetry" places nothing.
+        Some(info) if info.placeable.is_empty() && !info.documents.is_empty() => {
+            Verdict::Rarely("written matter: a thing only where the sentence places it".to_string())
+        }
         Some(info) if info.placeable.is_empty() && info.structure => Verdict::NotObject(
             "a building, vessel or structure, or part of the architecture: nothing placed in \
              a room"
@@ -398,9 +424,22 @@ fn nearest(lemma: &str, senses: &[SynsetId], known: &dyn Fn(&str) -> bool) -> Op
 
 /// The nearest family `known` accepts along the hypernyms of the placeable senses of
 /// `words` ("samovar" -> "urn" when the library builds urns).
+///
+/// Written matter with no placeable sense walks up from its document senses, and is the
+/// rules' `document_family` (paper) when no family is near.
 pub fn family(words: &str, known: &dyn Fn(&str) -> bool) -> Option<Family> {
     let info = noun_info(words)?;
-    nearest(&info.lemma, &info.placeable, known)
+    if !info.placeable.is_empty() {
+        return nearest(&info.lemma, &info.placeable, known);
+    }
+    let paper = &rules().document_family;
+    nearest(&info.lemma, &info.documents, known).or_else(|| {
+        (!info.documents.is_empty() && known(paper)).then(|| Family {
+            noun: paper.clone(),
+            distance: 0,
+            via: vec![info.lemma.clone(), paper.clone()],
+        })
+    })
 }
 
 /// The nearest room word `known` accepts along the hypernyms of the room-like senses of
