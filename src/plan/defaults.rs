@@ -163,6 +163,19 @@ impl Builder<'_> {
                 .any(|(i, r)| i != self.room && registry.is_a(&r.room_type, home))
     }
 
+    /// True when the prompt names a default `noun` (or a kind of it, or what it is a kind of)
+    /// with an exact count in another room of the house: "a dresser full of plates" in the
+    /// kitchen is the house's one dresser, and the bedroom gets no optional one besides.
+    fn named_elsewhere(&self, noun: &str) -> bool {
+        self.reading.rooms.len() >= 2
+            && self.reading.mentions.iter().any(|m| {
+                m.room != self.room
+                    && !m.negated
+                    && matches!(m.count, crate::prompt::Count::Exactly(_))
+                    && covers(self.lex, &m.category, noun)
+            })
+    }
+
     /// Room-type defaults, scaled by density and room size, minus what the prompt covers or
     /// excludes.
     pub(super) fn defaults(&mut self) {
@@ -184,7 +197,11 @@ impl Builder<'_> {
             .map_or(1.0, |r| r.size_scale);
         let add = |b: &mut Self, item: &KbItem, support: Support, own: &mut Vec<String>| {
             // An optional piece whose first home is another room of the house stays there.
-            if b.excluded(&item.noun) || (item.count[0] == 0 && b.hosted_elsewhere(&item.noun)) {
+            // So does an optional piece the prompt counts in another room.
+            if b.excluded(&item.noun)
+                || (item.count[0] == 0
+                    && (b.hosted_elsewhere(&item.noun) || b.named_elsewhere(&item.noun)))
+            {
                 return;
             }
             if let Some(by) = b.covered_by(&item.noun, own) {

@@ -554,17 +554,22 @@ fn single_room(
 ) -> Structure {
     // A room with a registry type over a named room without one ("The spare room has been
     // turned into a home gym": a home gym).
+    // A room after a preposition is where the room is, when the sentence names another
+    // ("Hidden in a converted basement, this recording studio has ..."): the other first.
     fn typed(chunks: &[Chunk], registry_type: bool) -> Option<&Np> {
-        chunks.iter().find_map(|c| match &c.item {
+        let room_at = |k: usize, placed_ok: bool| match &chunks[k].item {
             Item::Np(np)
                 if matches!(&np.head, Head::Room { key, .. } if !registry_type || key != "room")
                     && !generic_room(np)
-                    && !np.negated =>
+                    && !np.negated
+                    && (placed_ok || k == 0 || !matches!(chunks[k - 1].item, Item::Prep(_))) =>
             {
                 Some(np.as_ref())
             }
             _ => None,
-        })
+        };
+        let find = |placed_ok: bool| (0..chunks.len()).find_map(|k| room_at(k, placed_ok));
+        find(false).or_else(|| find(true))
     }
     // "The spare room has been turned into a home gym", "a garage used as a workshop": the
     // room after "into" or "as" is what the room is now.

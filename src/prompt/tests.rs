@@ -801,12 +801,24 @@ fn each_before_a_verb_in_its_base_form_is_per_subject() {
 
 #[test]
 fn written_matter_is_paper_where_the_sentence_places_it() {
-    let r = read("A study. The shelf holds books and logbooks, and the desk has a stack of flyers.");
-    assert!(r.mentions.iter().any(|m| m.noun == "logbook"), "{:?}", r.mentions);
-    assert!(r.mentions.iter().any(|m| m.noun == "flyer"), "{:?}", r.mentions);
+    let r =
+        read("A study. The shelf holds books and logbooks, and the desk has a stack of flyers.");
+    assert!(
+        r.mentions.iter().any(|m| m.noun == "logbook"),
+        "{:?}",
+        r.mentions
+    );
+    assert!(
+        r.mentions.iter().any(|m| m.noun == "flyer"),
+        "{:?}",
+        r.mentions
+    );
     let r = read("A study with a desk. It reflects a love of poetry and literature.");
     assert_eq!(
-        r.mentions.iter().map(|m| m.noun.as_str()).collect::<Vec<_>>(),
+        r.mentions
+            .iter()
+            .map(|m| m.noun.as_str())
+            .collect::<Vec<_>>(),
         ["desk"]
     );
 }

@@ -169,12 +169,17 @@ fn object_name(description: &str, category: &str) -> Option<String> {
 }
 
 /// Whether a thing of support class `own` may be placed by the stage of `stage` when the plan
-/// puts it there: a small thing standing on the floor (a basket, a crate), or a floor thing
-/// small enough for a piece of furniture (the surface's own fit check decides).
+/// puts it there: a small thing standing on the floor (a basket, a crate), a floor thing
+/// small enough for a piece of furniture (the surface's own fit check decides), or a small
+/// thing the prompt mounts ("a computer on a wall arm", "a projector hangs from the
+/// ceiling": fixed where it is put, as wall and ceiling things are).
 fn crosses(own: SupportClass, stage: SupportClass) -> bool {
     matches!(
         (own, stage),
-        (SupportClass::Surface, SupportClass::Floor) | (SupportClass::Floor, SupportClass::Surface)
+        (SupportClass::Surface, SupportClass::Floor)
+            | (SupportClass::Floor, SupportClass::Surface)
+            | (SupportClass::Surface, SupportClass::Wall)
+            | (SupportClass::Surface, SupportClass::Ceiling)
     )
 }
 

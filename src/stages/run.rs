@@ -421,6 +421,82 @@ fn leftover_plan(scene: &SceneState, room: &str, plan: &RoomPlan, host: &str) ->
     })
 }
 
+/// Placement tools tried in turn for a thing the prompt asked for that nothing else could
+/// hold: along a wall, in a corner, in the open middle of the room.
+const FLOOR_TOOLS: [&str; 3] = ["place_against_wall", "place_in_corner", "place_in_center"];
+
+/// The prompt's things still missing from the room once every stage and the leftover hosts
+/// had their turn (`count` = how many are missing): small things no surface could hold ("a
+/// dozen rolled yoga mats" on a rack the room has no space for) and pieces of furniture.
+fn still_missing(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<Want> {
+    let present = |w: &Want| {
+        scene
+            .scene
+            .objects
+            .iter()
+            .filter(|o| o.room == room && o.kind != ObjectKind::Architecture)
+            .filter(|o| super::StageState::is_wanted(&scene.scene, w, o))
+            .count() as u32
+    };
+    plan.furniture
+        .iter()
+        .chain(plan.surfaces.iter().flat_map(|g| g.items.iter()))
+        .filter(|w| w.explicit)
+        .filter_map(|w| {
+            let missing = w.count.saturating_sub(present(w));
+            (missing > 0).then(|| Want {
+                count: missing,
+                arrangement: Arrangement::AgainstWall,
+                ..w.clone()
+            })
+        })
+        .collect()
+}
+
+/// Stands what the prompt asked for and no stage could place on the floor, with the
+/// furniture stage's tools (a stated count is not lost while the floor has room); returns
+/// the scene and how many were placed.
+fn place_missing_on_floor(scene: SceneState, room: &str, plan: &RoomPlan) -> (SceneState, u32) {
+    let missing = still_missing(&scene, room, plan);
+    if missing.is_empty() {
+        return (scene, 0);
+    }
+    let mut state = StageState {
+        scene,
+        kind: StageKind::Furniture,
+        room: room.to_string(),
+        entity: None,
+        plan: Arc::new(RoomPlan {
+            furniture: missing.clone(),
+            excluded: plan.excluded.clone(),
+            ..RoomPlan::default()
+        }),
+        requests: 0,
+    };
+    let (tools, _) = tools_and_categories(StageKind::Furniture);
+    let mut placed = 0;
+    for want in &missing {
+        for _ in 0..want.count {
+            let ok = FLOOR_TOOLS.iter().any(|tool| {
+                tools
+                    .call(
+                        &mut state,
+                        crate::agents::Role::Designer,
+                        tool,
+                        serde_json::json!({"description": want.description}),
+                    )
+                    .is_ok()
+            });
+            if !ok {
+                tracing::info!("{room}: no floor space for {:?}", want.description);
+                break;
+            }
+            placed += 1;
+        }
+    }
+    (state.scene, placed)
+}
+
 /// Runs every placement stage of one room.
 pub fn furnish_room(
     scene: SceneState,
@@ -494,6 +570,13 @@ pub fn furnish_room_resumable(
             "/leftover",
             &mut rec,
         )?;
+    }
+    // What still has no place stands on the floor.
+    let (mut scene, on_floor) = place_missing_on_floor(scene, room, &plan);
+    if on_floor > 0 {
+        tracing::info!(
+            "{room}: {on_floor} asked-for objects no surface could hold stand on the floor"
+        );
     }
     scene.prune_assets();
     Ok((scene, rec.summaries))

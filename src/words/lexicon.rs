@@ -245,7 +245,17 @@ impl Lexicon {
         if let Some(s) = self.irregular.get(word) {
             return s.clone();
         }
-        singular_rules(word)
+        let single = singular_rules(word);
+        // "atlas", "canvas", "clothes": a noun WordNet lists as written whose stripped form
+        // is no noun stays as it is.
+        let wn = super::wordnet::wordnet();
+        if single != word
+            && wn.is_lemma(word, super::wordnet::Pos::Noun)
+            && !wn.is_lemma(&single, super::wordnet::Pos::Noun)
+        {
+            return word.to_string();
+        }
+        single
     }
 
     /// True when the word is written in a plural form ("chairs", "shelves").
