@@ -295,7 +295,7 @@ fn wordnet_verb(lex: &Lexicon, tokens: &[Token], i: usize, out: &[Chunk]) -> Opt
     let after_each = out.len() >= 2
         && matches!(out[out.len() - 1].item, Item::Each)
         && matches!(out[out.len() - 2].item, Item::Np(_));
-    if !(after_np && inflected) && !after_each {
+    if !(after_each || (after_np && inflected)) {
         return None;
     }
     let wn = crate::words::wordnet::wordnet();
