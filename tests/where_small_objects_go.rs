@@ -335,3 +335,35 @@ fn things_on_a_counter_stand_clear_of_the_wall_cabinets_above() {
         }
     }
 }
+
+#[test]
+fn what_no_surface_holds_stands_on_the_floor_and_mounted_things_are_mounted() {
+    // Rolled yoga mats are longer than the desk is deep: no surface of the room takes them.
+    // Before the floor pass, the twelve mats were lost.
+    let prompt = "A small office with a desk, a chair and twelve yoga mats on the desk. A \
+                  projector hangs from the ceiling.";
+    let (state, _) = build_scene(prompt, 5, "floor_fallback", &Backend::Builtin).unwrap();
+    let objects = &state.scene.objects;
+    let mats: Vec<_> = objects
+        .iter()
+        .filter(|o| o.category.contains("yoga_mat"))
+        .collect();
+    assert_eq!(mats.len(), 12, "every asked-for mat is placed");
+    for m in &mats {
+        assert!(
+            matches!(&m.support, Support::Floor { .. }),
+            "{} rests on {:?}, not on the floor",
+            m.id,
+            m.support
+        );
+    }
+    let projector = objects
+        .iter()
+        .find(|o| o.category == "projector")
+        .expect("the projector is placed");
+    assert!(
+        matches!(projector.support, Support::Ceiling { .. }),
+        "the projector rests on {:?}",
+        projector.support
+    );
+}

@@ -233,6 +233,14 @@ pub(crate) fn chunk_sentence(
             || (lex.quantifier_at(tokens, i).is_some() && quantifier_fits(lex, tokens, i))
             || matches!(w, "no" | "not");
         if !starts_np {
+            // "This trattoria seats a handful of guests", "a table that seats eight": after a
+            // singular phrase (or its "that"), a word in -s that WordNet knows as a verb and
+            // that a determiner or number follows is the verb, not a plural noun.
+            if let Some(class) = verb_after_singular(lex, tokens, i, &out) {
+                push(&mut out, Item::Verb(class.to_string(), w.to_string()), 1);
+                i += 1;
+                continue;
+            }
             if let Some((n, class)) = lex.preposition_at(tokens, i) {
                 push(&mut out, Item::Prep(class.to_string()), n);
                 i += n;
@@ -281,6 +289,54 @@ pub(crate) fn chunk_sentence(
         }
     }
     out
+}
+
+/// The class of a verb in -s at `i` right after a singular noun phrase or its relative
+/// pronoun, with a determiner, number or quantifier after it (see `chunk_sentence`).
+fn verb_after_singular(
+    lex: &Lexicon,
+    tokens: &[Token],
+    i: usize,
+    out: &[Chunk],
+) -> Option<&'static str> {
+    let w = tokens.get(i)?.text.as_str();
+    // A verb of the lexicon's table keeps its own class ("covers", "holds").
+    if lex.verb(w).is_some() {
+        return None;
+    }
+    let np = match out {
+        [
+            ..,
+            Chunk {
+                item: Item::Np(np), ..
+            },
+        ]
+        | [
+            ..,
+            Chunk {
+                item: Item::Np(np), ..
+            },
+            Chunk {
+                item: Item::Relative,
+                ..
+            },
+        ] => np,
+        _ => return None,
+    };
+    let singular = !np.plural
+        && np.number.is_none_or(|n| n == 1)
+        && matches!(np.head, Head::Object { .. } | Head::Room { .. });
+    let next = tokens.get(i + 1)?;
+    let np_next = word(tokens, i + 1).is_some_and(|n| lex.determiner(n).is_some())
+        || lex.number(next).is_some()
+        || lex.quantifier_at(tokens, i + 1).is_some();
+    let wn = crate::words::wordnet::wordnet();
+    let verb = w.ends_with('s')
+        && lex.is_plural(w)
+        && !wn
+            .base_forms(w, crate::words::wordnet::Pos::Verb)
+            .is_empty();
+    (singular && np_next && verb).then_some("possess")
 }
 
 /// A verb the lexicon's table does not list, after a noun phrase ("The kitchen boasts a

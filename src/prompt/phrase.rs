@@ -644,10 +644,39 @@ impl<'a> Phrase<'a> {
     ) -> Option<usize> {
         let (lex, tokens, j, end) = (self.lex, self.tokens, before.j, self.end);
         let room_len = room.map_or(0, |(n, _)| n);
+        // "a wooden bar", "a marble counter": rooms are not made of a material; a room word
+        // that WordNet also knows as a thing is that thing.
+        if room_len >= noun_len.max(1)
+            && (!np.attrs.materials.is_empty()
+                || made_of_thing(lex, tokens, before.mods_from, j, room_len))
+        {
+            let words: Vec<&str> = tokens[j..j + room_len]
+                .iter()
+                .map(|t| t.text.as_str())
+                .collect();
+            if let Ok(head) = ground_words(lex, &words, Evidence::Strong) {
+                np.plural = lex.is_plural(words[room_len - 1]);
+                let mut noun = words.clone();
+                noun[room_len - 1] = &head.singular;
+                np.set_grounded(noun.join(" "), &head);
+                return Some(j + room_len);
+            }
+        }
         // "a kiln room", "a boot room": nouns before a room word name the room.
+        // Not when the room word is a verb in -s after a singular phrase ("a plan chest
+        // stores sheets of paper").
+        let singular_det = matches!(np.det.as_deref(), Some("indefinite" | "each" | "another"))
+            && np.number.is_none();
+        let verb_s = |k: usize| {
+            singular_det
+                && lex.is_plural(&tokens[k].text)
+                && crate::words::wordnet::wordnet()
+                    .has_pos(&tokens[k].text, crate::words::wordnet::Pos::Verb)
+        };
         if room_len == 0
             && let Some((n, key, words)) = room_compound(lex, self.kb, tokens, j, end)
             && noun_len < n
+            && !verb_s(j + n - 1)
         {
             np.plural = lex.is_plural(&tokens[j + n - 1].text);
             np.head = Head::Room { key, words };
@@ -1452,6 +1481,7 @@ fn open_head(
         }
         if k > j
             && let Some((n2, key)) = kb.room_type_at(tokens, k)
+            && !made_of_thing(lex, tokens, j, k, n2)
         {
             return Open::Room {
                 before: k,
@@ -1713,6 +1743,16 @@ fn listed_placed(lex: &Lexicon, tokens: &[Token], start: usize) -> bool {
         }
     }
     false
+}
+
+/// "a wooden bar", "a marble counter": a material word among `from..at` before the room word
+/// of `n` words at `at`, which WordNet also knows as a thing. Rooms are not made of a
+/// material; the thing is meant.
+fn made_of_thing(lex: &Lexicon, tokens: &[Token], from: usize, at: usize, n: usize) -> bool {
+    (from..at).any(|k| word(tokens, k).is_some_and(|w| lex.material(w).is_some()))
+        && word(tokens, at + n - 1).is_some_and(|w| {
+            ground::noun_info(&lex.singular(w)).is_some_and(|i| !i.placeable.is_empty())
+        })
 }
 
 /// A room's name as the prompt gives it: the room words with the kind words before them

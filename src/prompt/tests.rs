@@ -822,3 +822,44 @@ fn written_matter_is_paper_where_the_sentence_places_it() {
         ["desk"]
     );
 }
+
+#[test]
+fn a_verb_in_s_after_a_singular_phrase_is_no_plural_noun() {
+    let r = read("This trattoria seats a handful of guests. A kitchen table that seats eight.");
+    assert!(
+        r.mentions.iter().all(|m| m.category != "chair"),
+        "{:?}",
+        r.mentions
+    );
+    let r = read("A plan chest stores sheets of paper.");
+    assert_eq!(r.rooms.len(), 1);
+    assert_eq!(find(&r, "chest").noun, "plan chest");
+}
+
+#[test]
+fn a_room_word_made_of_a_material_is_the_thing() {
+    let r = read("A trattoria. A wooden bar along one side holds an espresso machine.");
+    assert_eq!(r.rooms.len(), 1, "{:?}", r.rooms);
+    assert!(
+        r.mentions.iter().any(|m| m.noun == "bar"),
+        "{:?}",
+        r.mentions
+    );
+    let r = read("Hidden in a converted basement, this recording studio has a sofa.");
+    assert_eq!(r.rooms.len(), 1, "{:?}", r.rooms);
+    assert_eq!(r.rooms[0].room_type, "music_room");
+}
+
+#[test]
+fn plurals_the_lexicon_knows_stay_plural_whatever_wordnet_lists() {
+    let r = read("A bar with a row of wine glasses, and a lab with robotic arms.");
+    assert_eq!(find(&r, "wine glass").count, Count::Several);
+    assert_eq!(find(&r, "robotic arm").count, Count::Several);
+    let r = read("A study with a star atlas and two canvases.");
+    let atlas = find(&r, "atlas");
+    assert_eq!(
+        (atlas.noun.as_str(), atlas.count),
+        ("star atlas", Count::Exactly(1))
+    );
+    assert_eq!(find(&r, "painting").count, Count::Exactly(2));
+}

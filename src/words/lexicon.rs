@@ -267,8 +267,13 @@ impl Lexicon {
     }
 
     /// True for nouns that only exist in the plural ("scissors", "jeans").
+    /// A singular the lexicon lists for the word wins over WordNet ("glasses": glass, though
+    /// WordNet also has "glasses" for spectacles).
     pub fn plurale_tantum(&self, word: &str) -> bool {
-        self.irregular.get(word).is_some_and(|s| s == word) || wordnet_plurale_tantum(word)
+        match self.irregular.get(word) {
+            Some(s) => s == word,
+            None => wordnet_plurale_tantum(word),
+        }
     }
 
     /// The entry a spelling names.
@@ -318,14 +323,25 @@ impl Lexicon {
                 _ => last,
             };
             let plural = self.is_plural(counted) && !self.plurale_tantum(counted);
-            if let Some(i) = self.entry_index(&raw) {
-                // "glasses", "shelves" as synonyms are plural even though listed verbatim.
-                return Some((len, i, plural || self.entry_plural_spelling(i, &raw)));
-            }
             let mut sing: Vec<String> = words.iter().map(|w| w.to_string()).collect();
             sing[len - 1] = self.singular(last);
+            if let Some(i) = self.entry_index(&raw) {
+                // "glasses", "shelves" as synonyms are plural even though listed verbatim;
+                // so is a spelling whose last word singular is the same entry ("robotic arms",
+                // though WordNet also lists "arms").
+                let singular_too = counted == last
+                    && sing[len - 1] != last
+                    && self.entry_index(&sing.join(" ")) == Some(i);
+                return Some((
+                    len,
+                    i,
+                    plural || singular_too || self.entry_plural_spelling(i, &raw),
+                ));
+            }
             if let Some(i) = self.entry_index(&sing.join(" ")) {
-                return Some((len, i, plural));
+                // The lexicon knows it only with the last word singular: that word was a
+                // plural ("robotic arms", though WordNet also lists "arms").
+                return Some((len, i, plural || counted == last));
             }
             let all: Vec<String> = words.iter().map(|w| self.singular(w)).collect();
             if let Some(i) = self.entry_index(&all.join(" ")) {
