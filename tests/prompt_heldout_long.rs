@@ -163,7 +163,7 @@ fn pct(a: usize, b: usize) -> f64 {
 }
 
 /// `read_env` names the variable that lists ids whose whole reading is printed (the dev set
-/// only: the held-out prompts are never looked at).
+/// only: the held-out prompts are never looked at, and their misses are not printed).
 fn score_file(path: &str, title: &str, misses_env: &str, read_env: Option<&str>) -> Score {
     let text = std::fs::read_to_string(path).unwrap();
     let mut s = Score::default();
@@ -207,7 +207,7 @@ fn score_file(path: &str, title: &str, misses_env: &str, read_env: Option<&str>)
         "  extra objects {:4} (planned, named by no requirement)",
         s.extra
     );
-    if std::env::var_os(misses_env).is_some() {
+    if read_env.is_some() && std::env::var_os(misses_env).is_some() {
         for m in &s.misses {
             println!("  miss: {m}");
         }
@@ -238,6 +238,21 @@ fn reader_on_held_out_long_prompts() {
         None,
     );
     assert_floors(&s, 82.0, 88.0, 91.0);
+}
+
+/// A second held-out file (`tests/fixtures/heldout_long2.jsonl`, 44 prompts), written on
+/// 2026-11-29 by a helper who read neither the reader nor the lexicon: scored, never read or
+/// tuned on. Measured when added: objects 93.9 %, absents 94.1 %, rooms 96.0 %, refused 4/4
+/// (its generated scenes scored 83.4 % of objects at the session's start).
+#[test]
+fn reader_on_second_held_out_long_prompts() {
+    let s = score_file(
+        "tests/fixtures/heldout_long2.jsonl",
+        "reader on the second held-out long prompts",
+        "HELDOUT2_NEVER_PRINTED",
+        None,
+    );
+    assert_floors(&s, 90.0, 88.0, 93.0);
 }
 
 /// The development set of the same kind: the one the reader may be tuned on.
