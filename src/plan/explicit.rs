@@ -7,7 +7,6 @@ use super::{
     Arrangement, Builder, MAX_COUNT, SurfaceItem, Want, covers, fill_factor, is_seat,
     is_table_like, pick, place_to_arrangement,
 };
-use crate::assets::router::parse::main_categories;
 use crate::knowledge::Place;
 use crate::prompt::{self, Count, GroupKind, Mention, Per, RelationKind, Target};
 use crate::words::Support;
@@ -463,16 +462,11 @@ fn same_build(a: &str, b: &str) -> bool {
 }
 
 /// A mention's description for the router, with the name the prompt gives it ("bedside
-/// table", "bentwood chair") when the router builds that name as it builds the canonical noun,
-/// so the object is called what the prompt calls it; else with the canonical noun.
+/// table", "two-burner hob", "patchwork quilt"), so the object is called what the prompt calls
+/// it; the stage builds the plan's noun for it where the router would read the name as
+/// something else (`StageState::route_asset`).
 fn named_description(m: &Mention) -> String {
     if m.noun == m.category {
-        return m.description();
-    }
-    let noun_categories = main_categories(&m.noun);
-    let same = !noun_categories.is_empty()
-        && noun_categories.first() == main_categories(&m.category).first();
-    if !same {
         return m.description();
     }
     let name_words: Vec<&str> = m.noun.split(' ').collect();

@@ -238,6 +238,17 @@ impl StageState {
                 .any(|c| procedural::prior(c).is_some_and(|p| p.support == want))
         };
         let mut candidates = router::parse::main_categories(description);
+        // The plan's noun decides what is built when the router reads the prompt's name for
+        // it as something else or not at all ("two-burner hob": a stove; "heavy shears":
+        // scissors); the object keeps the name.
+        let mut plan_builds = None;
+        if let Some(noun) = self.planned_noun(description) {
+            let of_noun = router::parse::main_categories(&noun);
+            if of_noun.first() != candidates.first() {
+                candidates = of_noun;
+                plan_builds = Some(noun);
+            }
+        }
         // The object keeps the words it was asked for by as its name, whatever it is built as.
         let asked = description.to_string();
         let mut description = description.to_string();
@@ -247,6 +258,7 @@ impl StageState {
             && !for_stage(&candidates, want)
             && let Some(sibling) = procedural::support_sibling(first, want)
         {
+            plan_builds = None;
             let (from, to) = (first.replace('_', " "), sibling.replace('_', " "));
             description = if description.contains(&from) {
                 description.replace(&from, &to)
@@ -300,7 +312,9 @@ impl StageState {
         // The router reads the whole description: attributes, compounds ("fruit bowl": a
         // bowl now, its fruit reported as parts to place), unknown nouns.
         let mut request = RouteRequest::new(description, stage, seed);
-        request.category = planned_as;
+        // Words the router cannot read that the plan names ("heavy shears" for scissors):
+        // build the plan's noun; the object keeps the words as its name.
+        request.category = planned_as.or(plan_builds);
         request.size = size;
         self.requests += 1;
         let routed = router::route(&request, router_context())
