@@ -571,8 +571,13 @@ pub fn furnish_room_resumable(
             &mut rec,
         )?;
     }
-    // What still has no place stands on the floor.
-    let (mut scene, on_floor) = place_missing_on_floor(scene, room, &plan);
+    // What still has no place stands on the floor (the built-in designers' plan; an LLM
+    // designer's choices stand as it made them).
+    let (mut scene, on_floor) = if matches!(backend, Backend::Builtin) {
+        place_missing_on_floor(scene, room, &plan)
+    } else {
+        (scene, 0)
+    };
     if on_floor > 0 {
         tracing::info!(
             "{room}: {on_floor} asked-for objects no surface could hold stand on the floor"
