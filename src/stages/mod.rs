@@ -241,10 +241,17 @@ impl StageState {
         // The plan's noun decides what is built when the router reads the prompt's name for
         // it as something else or not at all ("two-burner hob": a stove; "heavy shears":
         // scissors); the object keeps the name.
+        // A variant of the noun's own generator ("wooden blocks": the toy block's wooden
+        // variant) is what the words ask for and stays.
+        let generator =
+            |c: Option<&&str>| c.and_then(|c| procedural::prior(c)).map(|p| &p.generator);
         let mut plan_builds = None;
         if let Some(noun) = self.planned_noun(description) {
             let of_noun = router::parse::main_categories(&noun);
-            if of_noun.first() != candidates.first() {
+            let same_kind = of_noun.first() == candidates.first()
+                || generator(of_noun.first())
+                    .is_some_and(|g| generator(candidates.first()) == Some(g));
+            if !same_kind {
                 candidates = of_noun;
                 plan_builds = Some(noun);
             }
