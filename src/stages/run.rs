@@ -425,30 +425,40 @@ fn leftover_plan(scene: &SceneState, room: &str, plan: &RoomPlan, host: &str) ->
 /// hold: along a wall, in a corner, in the open middle of the room.
 const FLOOR_TOOLS: [&str; 3] = ["place_against_wall", "place_in_corner", "place_in_center"];
 
-/// The prompt's things still missing from the room once every stage and the leftover hosts
-/// had their turn (`count` = how many are missing): small things no surface could hold ("a
-/// dozen rolled yoga mats" on a rack the room has no space for) and pieces of furniture.
+/// The prompt's things entirely absent from the room once every stage and the leftover
+/// hosts had their turn: small things no surface could hold ("a dozen rolled yoga mats" on a
+/// rack the room has no space for) and pieces of furniture. A thing of which any is there,
+/// by its plan noun or by the name its description gives (tablecloths laid over their tables,
+/// one cable of a tangle), is left as it is: topping it up on the floor would more often add
+/// what is already there under another name than what is missing.
 fn still_missing(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<Want> {
     let present = |w: &Want| {
+        let name = crate::assets::router::parse::object_name(&w.description)
+            .map(|n| crate::scene::sanitize_name(&n));
         scene
             .scene
             .objects
             .iter()
             .filter(|o| o.room == room && o.kind != ObjectKind::Architecture)
-            .filter(|o| super::StageState::is_wanted(&scene.scene, w, o))
-            .count() as u32
+            .any(|o| {
+                super::StageState::is_wanted(&scene.scene, w, o)
+                    || name.as_deref().is_some_and(|n| {
+                        o.category == n
+                            || o.name
+                                .as_deref()
+                                .map(crate::scene::sanitize_name)
+                                .as_deref()
+                                == Some(n)
+                    })
+            })
     };
     plan.furniture
         .iter()
         .chain(plan.surfaces.iter().flat_map(|g| g.items.iter()))
-        .filter(|w| w.explicit)
-        .filter_map(|w| {
-            let missing = w.count.saturating_sub(present(w));
-            (missing > 0).then(|| Want {
-                count: missing,
-                arrangement: Arrangement::AgainstWall,
-                ..w.clone()
-            })
+        .filter(|w| w.explicit && !present(w))
+        .map(|w| Want {
+            arrangement: Arrangement::AgainstWall,
+            ..w.clone()
         })
         .collect()
 }
