@@ -71,6 +71,7 @@ fn hostile_names_give_valid_escaped_contained_files() {
         id: "weird \"obj\" ../tür".into(),
         category: "drawer \"box\" ../".into(),
         name: None,
+        planned: None,
         kind: ObjectKind::Furniture,
         room,
         asset: asset_id,

@@ -367,3 +367,27 @@ fn what_no_surface_holds_stands_on_the_floor_and_mounted_things_are_mounted() {
         projector.support
     );
 }
+
+#[test]
+fn a_thing_the_plan_knows_by_another_noun_is_placed_once() {
+    // The plan's noun for the gramophone is "record player"; the object is called after the
+    // prompt's words. Before the object kept the noun it was placed for, nothing counted the
+    // gramophone on the stool as the plan's record player, and the stage and the leftover
+    // hosts put four more on the counter and the table.
+    let prompt = "An antique shop with a glass counter, a round table and a stool. A gramophone \
+                  with a great flared horn sits on the stool.";
+    let (state, _) = build_scene(prompt, 3, "planned_noun", &Backend::Builtin).unwrap();
+    let gramophones: Vec<_> = state
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.category.contains("gramophone"))
+        .collect();
+    assert_eq!(
+        gramophones.len(),
+        1,
+        "{:?}",
+        gramophones.iter().map(|o| &o.id).collect::<Vec<_>>()
+    );
+    assert_eq!(gramophones[0].planned.as_deref(), Some("record player"));
+}

@@ -170,6 +170,7 @@ mod tests {
                 id: format!("{c}_{i}"),
                 category: c.to_string(),
                 name: None,
+                planned: None,
                 kind: ObjectKind::Furniture,
                 room: "r".into(),
                 asset: "a".into(),

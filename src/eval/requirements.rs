@@ -496,7 +496,14 @@ pub fn room_matches(label: &str, room: &Room) -> bool {
 pub fn room_name_meets(label: &str, name: &str, label_words: bool) -> bool {
     let normal = normalize_label(label);
     let key = room_type_key(label);
-    let n = normalize_label(name);
+    let mut n = normalize_label(name);
+    // One of several rooms of a kind is numbered ("dormitory 2"): a dormitory.
+    if label_words
+        && let Some((head, number)) = n.rsplit_once(' ')
+        && number.chars().all(|c| c.is_ascii_digit())
+    {
+        n = head.to_string();
+    }
     // "kitchen-diner" is a kitchen.
     let raw = name.trim().to_lowercase();
     let hyphen_part = label_words
@@ -735,6 +742,7 @@ mod tests {
             id: id.into(),
             category: category.into(),
             name: None,
+            planned: None,
             kind: ObjectKind::Furniture,
             room: room.into(),
             asset: "a".into(),
@@ -1004,6 +1012,7 @@ mod tests {
         let mut s = s;
         s.objects.push(SceneObject {
             name: Some("treasure chest".into()),
+            planned: None,
             ..object("box_0", "box", "bedroom_0")
         });
         assert_eq!(
@@ -1074,7 +1083,13 @@ mod tests {
             label: Some("master bedroom".into()),
             ..room("bedroom_1", "bedroom")
         });
+        // One of several rooms of a kind, numbered.
+        s.rooms.push(Room {
+            label: Some("bunk room 2".into()),
+            ..room("dorm_room_1", "dorm_room")
+        });
         for (line, want) in [
+            (r#"{"room": "bunk room", "count": "=1"}"#, (1, true)),
             (r#"{"room": "exam room", "count": "=1"}"#, (1, true)),
             (r#"{"room": "Examination Rooms", "count": "=1"}"#, (1, true)),
             (r#"{"room": "exam_room", "count": "=1"}"#, (1, true)),

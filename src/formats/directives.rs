@@ -199,6 +199,7 @@ mod tests {
                 id: id.into(),
                 category: id.into(),
                 name: None,
+                planned: None,
                 kind,
                 room: "room_0".into(),
                 asset: asset.into(),

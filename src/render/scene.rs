@@ -433,6 +433,7 @@ mod tests {
             id: "room_0_architecture".into(),
             category: "room_architecture".into(),
             name: None,
+            planned: None,
             kind: ObjectKind::Architecture,
             room: "room_0".into(),
             asset: id,

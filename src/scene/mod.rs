@@ -264,6 +264,11 @@ pub struct SceneObject {
     /// known. Older scene files have none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
+    /// The plan's noun the object was placed for ("record player" for "a gramophone with a
+    /// great flared horn"), when a stage placed it for an item of the plan: what counts it
+    /// against that item whatever it is called. Older scene files have none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub planned: Option<String>,
     /// Role of the object.
     pub kind: ObjectKind,
     /// Id of the room the object is in.
@@ -548,6 +553,7 @@ mod tests {
             id: "box_0".into(),
             category: "box".into(),
             name: None,
+            planned: None,
             kind: ObjectKind::Manipuland,
             room: "room_0".into(),
             asset: "box_1".into(),

@@ -153,6 +153,9 @@ pub struct RoutedAsset {
     /// ("long wedging table" built as a `table`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
+    /// The plan's noun of the item the description places, when it is one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub planned: Option<String>,
 }
 
 /// A short description that is a name ("long wedging table", "paint-spattered radio") and
@@ -349,6 +352,7 @@ impl StageState {
         Ok(RoutedAsset {
             asset: id,
             name: object_name(&asked, &category),
+            planned: self.planned_noun(&asked),
             category,
             size: [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]],
             notes,
@@ -377,6 +381,7 @@ impl StageState {
             .find(|o| o.id == id)
         {
             o.name = routed.name.clone();
+            o.planned = routed.planned.clone();
         }
         id
     }

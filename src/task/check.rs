@@ -251,6 +251,7 @@ mod tests {
                 id,
                 category: category.into(),
                 name: None,
+                planned: None,
                 kind,
                 room: format!("{t}_0"),
                 asset: format!("{category}_a"),

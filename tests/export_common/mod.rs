@@ -106,6 +106,7 @@ pub fn articulated_state() -> SceneState {
         id: "drawer_box_0".into(),
         category: "drawer box".into(),
         name: None,
+        planned: None,
         kind: ObjectKind::Furniture,
         room,
         asset: asset_id,

@@ -101,6 +101,7 @@ pub fn room(w: f64, d: f64) -> SceneState {
         id: "room_0_architecture".into(),
         category: "room_architecture".into(),
         name: None,
+        planned: None,
         kind: ObjectKind::Architecture,
         room: "room_0".into(),
         asset,

@@ -59,12 +59,15 @@ pub fn kind_of(noun: &str, category: &str) -> bool {
         && generator(base) == generator(category)
 }
 
-/// True when `o` in `scene` is what `noun` asks for, by its name (the prompt's,
-/// "manicure_table") or by the library category its asset is built as (`table`, or a narrower
+/// True when `o` in `scene` is what `noun` asks for: placed for the plan's `noun`, or by its
+/// name (the prompt's, "manicure_table") or by the library category its asset is built as (`table`, or a narrower
 /// kind of it: a `round_rug` is a rug).
 pub fn object_is(scene: &crate::scene::Scene, noun: &str, o: &SceneObject) -> bool {
     let built = scene.built_as(o);
-    names(noun, &o.category) || names(noun, built) || kind_of(noun, built)
+    o.planned.as_deref() == Some(noun)
+        || names(noun, &o.category)
+        || names(noun, built)
+        || kind_of(noun, built)
 }
 
 /// Footprint of an object whose size nobody knows, m².
