@@ -10,7 +10,7 @@ use super::report::{NounReport, NounStatus};
 use crate::knowledge::Knowledge;
 use crate::words::ground::{self, Verdict};
 use crate::words::lexicon::Lexicon;
-use crate::words::tokens::Token;
+use crate::words::tokens::{Token, TokenKind};
 
 /// Parts of the building that name where a thing goes when they stand before its noun
 /// ("floor cushion", "wall mirror", "ceiling hook", "window box", "door wreath", "corner shelf").
@@ -320,6 +320,7 @@ impl<'a> Phrase<'a> {
             if np.number.is_none()
                 && let Some(t) = tokens.get(j)
                 && let Some(n) = lex.number(t)
+                && !self.names_a_kind(np, j)
             {
                 np.one_word = t.text == "one";
                 np.number = Some(n);
@@ -357,6 +358,11 @@ impl<'a> Phrase<'a> {
         j += 1;
         if w == "the" && self.at(j) == Some("other") {
             np.other = true;
+            j += 1;
+        } else if w == "the" && self.at(j) == Some("others") {
+            // "the others": the rest of a group just named, no noun.
+            np.other = true;
+            np.plural = true;
             j += 1;
         }
         j
@@ -428,6 +434,23 @@ impl<'a> Phrase<'a> {
             }
         }
         j
+    }
+
+    /// Whether the number word at `j` after "a" begins the name of a kind with the word after
+    /// it ("a single bed", "a twin bed": WordNet nouns), not a count ("a single chair").
+    fn names_a_kind(&self, np: &Np, j: usize) -> bool {
+        let tokens = self.tokens;
+        np.det.as_deref() == Some("indefinite")
+            && tokens.get(j).is_some_and(|t| t.kind == TokenKind::Word)
+            && j + 1 < self.end
+            && tokens.get(j + 1).is_some_and(|next| {
+                next.is_word()
+                    && ground::is_noun(&format!(
+                        "{} {}",
+                        tokens[j].text.to_lowercase(),
+                        next.text.to_lowercase()
+                    ))
+            })
     }
 
     /// Top/bottom/other before a part noun ("the top level", "the other two levels").

@@ -863,3 +863,57 @@ fn plurals_the_lexicon_knows_stay_plural_whatever_wordnet_lists() {
     );
     assert_eq!(find(&r, "painting").count, Count::Exactly(2));
 }
+
+#[test]
+fn the_largest_and_the_other_two_pick_among_the_rooms_just_counted() {
+    // Different words than the dev prompt that showed it: a superlative and "the others".
+    let r = read(
+        "The cottage has two bathrooms and three bedrooms. The biggest has a four-poster bed, \
+         and the others each have a bunk bed and a chest of drawers. Downstairs there is a \
+         kitchen.",
+    );
+    let rooms_of = |cat: &str| -> Vec<usize> {
+        r.mentions
+            .iter()
+            .filter(|m| m.category == cat)
+            .map(|m| m.room)
+            .collect()
+    };
+    let bedrooms: Vec<usize> = (0..r.rooms.len())
+        .filter(|&i| r.rooms[i].room_type == "bedroom")
+        .collect();
+    assert_eq!(bedrooms.len(), 3, "{:?}", r.rooms);
+    let four_poster = r.mentions.iter().find(|m| m.noun == "four-poster bed");
+    assert_eq!(four_poster.map(|m| m.room), Some(bedrooms[0]));
+    assert_eq!(rooms_of("bunk bed"), bedrooms[1..].to_vec());
+    assert_eq!(rooms_of("dresser").len(), 2);
+    // "the second" picks by position; "the smaller" is a comparative.
+    let r = read("The flat has two bedrooms. The smaller has a crib. The second holds a desk.");
+    let bedrooms: Vec<usize> = (0..r.rooms.len())
+        .filter(|&i| r.rooms[i].room_type == "bedroom")
+        .collect();
+    assert_eq!(find(&r, "crib").room, bedrooms[0]);
+    assert_eq!(find(&r, "desk").room, bedrooms[1]);
+}
+
+#[test]
+fn a_room_word_joined_to_a_listed_room_furnishes_it() {
+    let r = read(
+        "The house has two bedrooms and a kitchen. Downstairs is an open-plan kitchen and \
+         living area with a big sofa and a dining table.",
+    );
+    let kitchen = r.rooms.iter().position(|x| x.room_type == "kitchen");
+    assert_eq!(Some(find(&r, "sofa").room), kitchen, "{:?}", r.rooms);
+    assert_eq!(Some(find(&r, "dining table").room), kitchen);
+}
+
+#[test]
+fn a_number_word_that_begins_a_kind_is_part_of_its_name() {
+    let r = read("A bedroom with a single bed, a twin bed and a single armchair.");
+    let beds: Vec<&Mention> = r.mentions.iter().filter(|m| m.category == "bed").collect();
+    assert_eq!(beds.len(), 2, "{:?}", r.mentions);
+    assert!(beds.iter().all(|m| m.count == Count::Exactly(1)));
+    assert_eq!(beds[0].noun, "single bed");
+    assert_eq!(beds[1].noun, "twin bed");
+    assert_eq!(find(&r, "armchair").count, Count::Exactly(1));
+}

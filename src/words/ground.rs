@@ -278,6 +278,12 @@ pub fn is_adjective(word: &str) -> bool {
     wordnet().has_pos(word, Pos::Adj)
 }
 
+/// The adjective `word` is a form of, by WordNet's morphy ("largest" -> "large", "bigger"
+/// -> "big", "best" -> "good"); `None` when it is no adjective.
+pub fn adjective_base(word: &str) -> Option<String> {
+    wordnet().base_forms(word, Pos::Adj).into_iter().next()
+}
+
 /// The part of speech a word has when it is not a noun ("stylish": adjective, "creating":
 /// verb, "dimly": adverb); `None` for nouns and for words WordNet does not know.
 pub fn only_other_pos(word: &str) -> Option<&'static str> {

@@ -11,7 +11,7 @@ use std::ops::Range;
 mod attach;
 mod objects;
 
-use super::chunk::{Chunk, Head, Item, Np};
+use super::chunk::{Chunk, Head, Item, Np, Pronoun};
 use super::mentions::{Count, Group, GroupKind, Mention};
 use super::relations::{Relation, RelationKind, Target, landmark_target};
 use super::rooms::{self, RoomReading, Scope};
@@ -174,6 +174,12 @@ pub(crate) struct Interp<'a> {
     each_rooms: Option<(usize, Vec<usize>, usize)>,
     /// A sentence has named its room (until then, objects go where they belong).
     focused: bool,
+    /// The rooms the last plural room phrase named ("three bedrooms"), for the phrases that
+    /// pick among them ("the largest", "the other two"), and those already picked.
+    room_group: Vec<usize>,
+    picked: Vec<usize>,
+    /// How many mentions there were when the group was named.
+    group_at: usize,
 }
 
 fn is_room_placement(kind: RelationKind, target: Target) -> bool {
@@ -208,6 +214,9 @@ impl<'a> Interp<'a> {
             last_one: None,
             each_rooms: None,
             focused: false,
+            room_group: Vec::new(),
+            picked: Vec::new(),
+            group_at: 0,
         }
     }
 
@@ -522,6 +531,29 @@ impl<'a> Interp<'a> {
         // room still names the rooms listed under it.
         let as_room = self.listed_room_word(np, chunk);
         let np = as_room.as_ref().unwrap_or(np);
+        // "the largest has ...", "the other two each have ...": a subject that picks among
+        // the rooms just counted ("the remaining two": the number may follow on its own).
+        let bare_number_then_verb = matches!(
+            chunks.get(k + 1).map(|x| &x.item),
+            Some(Item::Np(n)) if n.head == Head::NonObject && n.number.is_some() && n.det.is_none()
+        ) && matches!(
+            chunks.get(k + 2).map(|x| &x.item),
+            Some(Item::Verb(..))
+        );
+        if matches!(
+            np.head,
+            Head::NonObject | Head::Pronoun(Pronoun::One | Pronoun::Other)
+        ) && c.verb.is_none()
+            && c.subject.is_empty()
+            && (next_is_verb || subject_verb_after(chunks, k) || bare_number_then_verb)
+            && let Some(picked) = self.room_pick(np, chunk, chunks.get(k + 1))
+        {
+            if bare_number_then_verb {
+                c.skip_np = true;
+            }
+            self.furnish_picked(c, &picked);
+            return;
+        }
         match &np.head {
             Head::Room { .. } => {
                 // "a meeting room with a long table", "three guest rooms, each with a bed",
@@ -537,7 +569,26 @@ impl<'a> Interp<'a> {
                     _ => false,
                 } || self.existential_before(chunk.range.start);
                 let verb_follows = next_is_verb || subject_verb_after(chunks, k);
-                self.room_np(c, np, verb_follows, contents_follow)
+                // "an open-plan kitchen and living area with a sofa": a second room word that
+                // names no room of the reading is part of the room before it.
+                let partner = match (
+                    k.checked_sub(2).and_then(|j| chunks.get(j)),
+                    k.checked_sub(1).and_then(|j| chunks.get(j)),
+                ) {
+                    (
+                        Some(Chunk {
+                            item: Item::Np(first),
+                            ..
+                        }),
+                        Some(Chunk {
+                            item: Item::And, ..
+                        }),
+                    ) if matches!(first.head, Head::Room { .. }) && !self.names_a_room(np) => {
+                        Some(first.as_ref())
+                    }
+                    _ => None,
+                };
+                self.room_np(c, partner.unwrap_or(np), verb_follows, contents_follow)
             }
             Head::Landmark(class) => {
                 let Some(target) = landmark_target(class) else {
@@ -672,7 +723,122 @@ impl<'a> Interp<'a> {
         }
     }
 
+    /// Whether a room phrase names a room of the reading by its type or its words.
+    fn names_a_room(&self, np: &Np) -> bool {
+        let Head::Room { key, words } = &np.head else {
+            return false;
+        };
+        self.rooms.iter().any(|r| {
+            (key != "room" && r.room_type == *key)
+                || r.words == *words
+                || r.words.ends_with(&format!(" {words}"))
+        })
+    }
+
+    /// Keeps the rooms a plural room phrase names ("three bedrooms", "the bedrooms") as the
+    /// group that later phrases pick from.
+    fn remember_group(&mut self, np: &Np) {
+        let Some(i) = rooms::resolve(&self.rooms, np, self.room) else {
+            return;
+        };
+        let (kind, words) = (&self.rooms[i].room_type, &self.rooms[i].words);
+        let group: Vec<usize> = (0..self.rooms.len())
+            .filter(|&j| self.rooms[j].room_type == *kind && self.rooms[j].words == *words)
+            .collect();
+        if group.len() > 1 {
+            self.room_group = group;
+            self.picked.clear();
+            self.group_at = self.mentions.len();
+        }
+    }
+
+    /// The rooms of the last plural room phrase that a subject without a noun picks: "the
+    /// largest" (a superlative or comparative: the next room not yet picked), "the first",
+    /// "the second" (by position), "the last", "one", and "the other two", "the others",
+    /// "the rest", "the remaining ones" (every room not yet picked).
+    fn room_pick(&mut self, np: &Np, chunk: &Chunk, next: Option<&Chunk>) -> Option<Vec<usize>> {
+        if self.scope != Scope::House || self.room_group.len() < 2 {
+            return None;
+        }
+        // "one has ..., the other ...": only right after the rooms, before any other plural
+        // phrase that "one" could pick from; "the other" only after "one" picked a room.
+        let plural_since = self.mentions[self.group_at.min(self.mentions.len())..]
+            .iter()
+            .any(|m| is_plural_count(m.count));
+        match np.head {
+            Head::Pronoun(Pronoun::One) if plural_since => return None,
+            Head::Pronoun(Pronoun::Other) if self.picked.is_empty() => return None,
+            _ => {}
+        }
+        let number = np.number.or(match next.map(|x| &x.item) {
+            Some(Item::Np(n)) => n.number,
+            _ => None,
+        });
+        let words: Vec<String> = self.tokens[chunk.range.clone()]
+            .iter()
+            .filter(|t| t.is_word())
+            .map(|t| t.text.to_lowercase())
+            .collect();
+        let open: Vec<usize> = self
+            .room_group
+            .iter()
+            .copied()
+            .filter(|r| !self.picked.contains(r))
+            .collect();
+        let has = |w: &str| words.iter().any(|x| x == w);
+        let rest = np.other || has("others") || has("remaining") || has("rest");
+        let graded = |w: &String| {
+            (w.ends_with("est") || w.ends_with("er"))
+                && crate::words::ground::adjective_base(w).is_some_and(|b| b != *w)
+        };
+        let picked: Vec<usize> = if rest && !has("another") {
+            let n = number.map_or(open.len(), |n| n as usize);
+            open.into_iter().take(n).collect()
+        } else if let Some(o) = np.ordinal {
+            self.room_group
+                .get(o.saturating_sub(1) as usize)
+                .into_iter()
+                .copied()
+                .collect()
+        } else if has("last") {
+            self.room_group.last().into_iter().copied().collect()
+        } else if words.iter().any(graded) || words.iter().all(|w| w == "one" || w == "another") {
+            open.into_iter().take(1).collect()
+        } else {
+            return None;
+        };
+        if picked.is_empty() {
+            return None;
+        }
+        self.picked.extend(picked.iter().copied());
+        Some(picked)
+    }
+
+    /// What follows furnishes the picked rooms: the first, and a copy in each of the others
+    /// ("the other two each have a single bed and a desk").
+    fn furnish_picked(&mut self, c: &mut Clause, picked: &[usize]) {
+        let Some((&first, others)) = picked.split_first() else {
+            return;
+        };
+        self.switch_room(first);
+        if !others.is_empty() {
+            let span = self
+                .spans
+                .get(self.room)
+                .map_or(0, |s| s.len().saturating_sub(1));
+            self.each_rooms = Some((self.mentions.len(), others.to_vec(), span));
+        }
+        c.subject_is_room = true;
+        c.ctx = Ctx::Room;
+        c.stack.clear();
+        c.focus.clear();
+        self.focused = true;
+    }
+
     fn room_np(&mut self, c: &mut Clause, np: &Np, next_is_verb: bool, contents_follow: bool) {
+        if self.scope == Scope::House && np.plural {
+            self.remember_group(np);
+        }
         // "the hall opens into a sitting room with a piano": the piano is the sitting room's.
         if contents_follow
             && c.pending.is_some()
