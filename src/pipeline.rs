@@ -349,7 +349,11 @@ pub fn build_scene_with(
     let rooms = state.scene.rooms.clone();
     let mut requested: Vec<(String, u32)> = Vec::new();
     for room in &rooms {
-        let plan = layout::spec::room_plan(&room.room_type, &room.prompt, is_house);
+        let plan = layout::spec::room_plan(
+            &room.room_type,
+            &room.prompt,
+            is_house.then_some(prompt_text),
+        );
         for n in &plan.notes {
             report.notes.push(format!("{}: {n}", room.id));
         }

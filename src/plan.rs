@@ -456,6 +456,14 @@ pub fn plan_rooms(reading: &Reading) -> Vec<RoomPlan> {
 /// Builds the plan of room `room` of a reading: the room's mentions merged with its room
 /// type's defaults.
 pub fn plan_house_room(reading: &Reading, room: usize) -> RoomPlan {
+    plan_room_of_house(reading, room, &[])
+}
+
+/// `plan_house_room`, where `elsewhere` lists the kinds (plan categories) the house's prompt
+/// counts exactly in other rooms: no default adds more of them ("the first bedroom holds
+/// two nightstands": the second bedroom gets none; "a vase of lilies" in the lobby: the
+/// corridor's console table holds no vases).
+pub fn plan_room_of_house(reading: &Reading, room: usize, elsewhere: &[String]) -> RoomPlan {
     let lex = crate::words::lexicon();
     let kb = knowledge::knowledge();
     let info = reading.rooms.get(room);
@@ -480,6 +488,7 @@ pub fn plan_house_room(reading: &Reading, room: usize) -> RoomPlan {
         },
         surface: Vec::new(),
         floor_of: BTreeMap::new(),
+        elsewhere,
     };
     b.plan.styles.clone_from(&b.styles);
     b.explicit();
@@ -510,6 +519,8 @@ struct Builder<'a> {
     surface: Vec<SurfaceItem>,
     /// Default noun -> the explicit noun that covers it (for rule targets).
     floor_of: BTreeMap<String, String>,
+    /// Kinds the house's prompt counts exactly in other rooms (`plan_room_of_house`).
+    elsewhere: &'a [String],
 }
 
 impl Builder<'_> {

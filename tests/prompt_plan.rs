@@ -147,3 +147,43 @@ fn house_rooms_get_their_own_programs() {
     assert!(plan.requested().is_empty());
     assert!(plan.furniture.iter().any(|w| w.noun == "toilet"));
 }
+
+#[test]
+fn what_a_house_prompt_counts_in_one_room_no_other_room_adds_by_default() {
+    let plans = |text: &str| -> Vec<(String, scenesmith::plan::RoomPlan)> {
+        let brief = scenesmith::layout::brief::read(text);
+        (0..brief.rooms.len())
+            .map(|i| {
+                let r = &brief.rooms[i];
+                let plan = scenesmith::layout::spec::room_plan(
+                    &r.room_type,
+                    &brief.room_prompt(i),
+                    Some(text),
+                );
+                (r.room_type.clone(), plan)
+            })
+            .collect()
+    };
+    let flat = plans(
+        "A flat with two bedrooms and a bathroom. The first bedroom holds a double bed with two \
+         nightstands, while the second bedroom has a single bed and a desk.",
+    );
+    let nightstands: u32 = flat.iter().map(|(_, p)| p.count_of("nightstand")).sum();
+    assert_eq!(nightstands, 2, "the prompt's two, none by default besides");
+    // What makes a room stays in every room of its kind.
+    let beds = flat
+        .iter()
+        .filter(|(t, p)| t == "bedroom" && p.count_of("bed") >= 1)
+        .count();
+    assert_eq!(beds, 2);
+    assert!(
+        flat.iter()
+            .any(|(t, p)| t == "bathroom" && p.count_of("toilet") == 1)
+    );
+    let hotel = plans(
+        "A hotel floor with a lobby, a corridor and two guest rooms. The lobby has a console \
+         table and a vase of lilies.",
+    );
+    let vases: u32 = hotel.iter().map(|(_, p)| p.count_of("vase")).sum();
+    assert_eq!(vases, 1, "{hotel:#?}");
+}

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use super::brief::HouseBrief;
 use super::knowledge::{self, Role, knowledge};
 use crate::assets::procedural;
-use crate::plan::{Arrangement, RoomPlan, plan_house_room};
+use crate::plan::{Arrangement, RoomPlan, plan_house_room, plan_room_of_house};
 use crate::prompt;
 use crate::scene::IdAllocator;
 
@@ -224,11 +224,14 @@ fn round1(v: f64) -> f64 {
 /// sizes the room for. In a house the room is typed as the layout typed it, and when its
 /// prompt still names other rooms of the house ("the clinic comprises a waiting room, two
 /// treatment rooms ..."), its contents are those the reader put in the room of that type.
-pub fn room_plan(room_type: &str, room_prompt: &str, is_house: bool) -> RoomPlan {
+///
+/// `house` is the house's whole prompt (`None` for one room): what it counts exactly in
+/// other rooms, no default of this room adds (`plan::plan_room_of_house`).
+pub fn room_plan(room_type: &str, room_prompt: &str, house: Option<&str>) -> RoomPlan {
     let mut reading = prompt::read(room_prompt);
-    if !is_house {
+    let Some(house) = house else {
         return plan_house_room(&reading, 0);
-    }
+    };
     reading.room_type = room_type.to_string();
     let i = reading
         .rooms
@@ -238,7 +241,22 @@ pub fn room_plan(room_type: &str, room_prompt: &str, is_house: bool) -> RoomPlan
     if let Some(r) = reading.rooms.get_mut(i) {
         r.room_type = room_type.to_string();
     }
-    plan_house_room(&reading, i)
+    let own: Vec<&str> = reading
+        .mentions
+        .iter()
+        .filter(|m| m.room == i)
+        .map(|m| m.category.as_str())
+        .collect();
+    let mut elsewhere: Vec<String> = prompt::read(house)
+        .mentions
+        .iter()
+        .filter(|m| !m.negated && matches!(m.count, prompt::Count::Exactly(_)))
+        .map(|m| m.category.clone())
+        .filter(|c| !own.contains(&c.as_str()))
+        .collect();
+    elsewhere.sort();
+    elsewhere.dedup();
+    plan_room_of_house(&reading, i, &elsewhere)
 }
 
 /// Builds the house specification of a brief.
@@ -251,7 +269,11 @@ pub fn house_spec(brief: &HouseBrief) -> HouseSpec {
         let id = ids.allocate(&r.room_type);
         let scale = r.size_scale * brief.size_scale;
         let prompt_text = brief.room_prompt(i);
-        let plan = room_plan(&r.room_type, &prompt_text, brief.is_house);
+        let plan = room_plan(
+            &r.room_type,
+            &prompt_text,
+            brief.is_house.then_some(brief.prompt.as_str()),
+        );
         let base = kind.size.scaled(scale);
         let size = if kind.role == Role::Hub {
             [round1(base[0]), round1(base[1])]
@@ -476,11 +498,11 @@ mod tests {
         );
         // Small objects that overflow the planned shelves (a pantry's knowledge brings three
         // shelf units) ask for more shelving.
-        let one = content_needs(&room_plan("pantry", "A pantry with a cabinet.", false));
+        let one = content_needs(&room_plan("pantry", "A pantry with a cabinet.", None));
         let many = content_needs(&room_plan(
             "pantry",
             "A pantry with a cabinet holding 100 mugs and 100 bowls.",
-            false,
+            None,
         ));
         assert!(many.wall_m > one.wall_m + 0.9, "{one:?} {many:?}");
         // The pottery store of the issue is no 3 x 3 m box.

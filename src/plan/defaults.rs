@@ -167,13 +167,32 @@ impl Builder<'_> {
     /// with an exact count in another room of the house: "a dresser full of plates" in the
     /// kitchen is the house's one dresser, and the bedroom gets no optional one besides.
     fn named_elsewhere(&self, noun: &str) -> bool {
-        self.reading.rooms.len() >= 2
-            && self.reading.mentions.iter().any(|m| {
-                m.room != self.room
-                    && !m.negated
-                    && matches!(m.count, crate::prompt::Count::Exactly(_))
-                    && covers(self.lex, &m.category, noun)
+        self.counted_in_other_rooms()
+            .any(|c| covers(self.lex, c, noun))
+    }
+
+    /// The kinds the prompt counts exactly in the house's other rooms: in this reading, and
+    /// those the house's whole prompt gave (`plan_room_of_house`).
+    pub(super) fn counted_in_other_rooms(&self) -> impl Iterator<Item = &str> {
+        let here = (self.reading.rooms.len() >= 2)
+            .then(|| {
+                self.reading.mentions.iter().filter(|m| {
+                    m.room != self.room
+                        && !m.negated
+                        && matches!(m.count, crate::prompt::Count::Exactly(_))
+                })
             })
+            .into_iter()
+            .flatten()
+            .map(|m| m.category.as_str());
+        here.chain(self.elsewhere.iter().map(String::as_str))
+    }
+
+    /// True when the prompt counts exactly the kind `noun` is in another room of the house
+    /// ("the first bedroom holds a double bed with two nightstands"): those are the house's,
+    /// and no room adds more of it by default.
+    fn counted_elsewhere(&self, noun: &str) -> bool {
+        self.counted_in_other_rooms().any(|c| c == noun)
     }
 
     /// Room-type defaults, scaled by density and room size, minus what the prompt covers or
@@ -198,9 +217,19 @@ impl Builder<'_> {
         let add = |b: &mut Self, item: &KbItem, support: Support, own: &mut Vec<String>| {
             // An optional piece whose first home is another room of the house stays there.
             // So does an optional piece the prompt counts in another room.
+            // So does an accessory of another piece (nightstands by the bed) that the prompt
+            // counts in another room; a piece that makes the room (its bed, its toilet) and a
+            // table's seats stay.
+            let accessory = item
+                .place
+                .as_ref()
+                .is_some_and(|p| place_to_arrangement(p).target().is_some());
             if b.excluded(&item.noun)
                 || (item.count[0] == 0
                     && (b.hosted_elsewhere(&item.noun) || b.named_elsewhere(&item.noun)))
+                || (accessory
+                    && !super::is_seat(lex, &item.noun)
+                    && b.counted_elsewhere(&item.noun))
             {
                 return;
             }

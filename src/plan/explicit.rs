@@ -29,13 +29,12 @@ impl Builder<'_> {
     /// Asked for with an exact number: defaults add no more of it (a table "set for 4 with a
     /// plate each" has four plates, not four plus a china cabinet full).
     pub(super) fn fixed_by_prompt(&self, noun: &str) -> bool {
-        self.reading.mentions.iter().any(|m| {
-            !m.negated
-                && matches!(m.count, Count::Exactly(_))
-                && (m.category == noun
-                    || covers(self.lex, noun, &m.category)
-                    || same_build(noun, &m.category))
-        })
+        let fixes = |c: &str| c == noun || covers(self.lex, noun, c) || same_build(noun, c);
+        self.reading
+            .mentions
+            .iter()
+            .any(|m| !m.negated && matches!(m.count, Count::Exactly(_)) && fixes(&m.category))
+            || self.elsewhere.iter().any(|c| fixes(c))
     }
 
     /// Count of mention `i` in this plan: a plain count, or a per-parent count resolved

@@ -572,24 +572,22 @@ mod tests {
             "A small apartment with a kitchen, a living room and a bedroom. The apartment has \
              no dining table, and the kitchen has a small island.",
         );
-        let kitchen = crate::layout::spec::room_plan("kitchen", &b3.room_prompt(0), true);
+        let kitchen =
+            crate::layout::spec::room_plan("kitchen", &b3.room_prompt(0), Some(&b3.prompt));
         assert!(kitchen.furniture.iter().any(|w| w.noun == "kitchen island"));
         assert!(kitchen.excluded.iter().any(|n| n == "dining table"));
         assert!(!b3.room_prompt(2).contains("island"));
         // A room's prompt that still names the other rooms plans the room's own contents.
-        let plan = crate::layout::spec::room_plan(
-            "break_room",
-            "A staff room in a clinic. The clinic comprises a waiting room with eight chairs \
-             and a staff room. The staff room offers a kettle.",
-            true,
-        );
+        let text = "A staff room in a clinic. The clinic comprises a waiting room with eight \
+                    chairs and a staff room. The staff room offers a kettle.";
+        let plan = crate::layout::spec::room_plan("break_room", text, Some(text));
         assert_eq!(plan.room_type, "break_room");
         assert!(plan.all_wants().any(|w| w.explicit && w.noun == "kettle"));
         assert!(!plan.all_wants().any(|w| w.explicit && w.noun == "chair"));
         for i in 0..b.rooms.len() {
             let p = b.room_prompt(i);
             assert_eq!(p.matches("comprises").count(), 1, "room {i}: {p}");
-            let plan = crate::layout::spec::room_plan(&b.rooms[i].room_type, &p, true);
+            let plan = crate::layout::spec::room_plan(&b.rooms[i].room_type, &p, Some(&b.prompt));
             let nouns: Vec<&str> = plan
                 .all_wants()
                 .filter(|w| w.explicit)
