@@ -1577,6 +1577,14 @@ fn open_head(
             q
         })
         .unwrap_or(words.len() - 1);
+    // An adjective that WordNet lists in a compound with the rest, as a thing, is part of the
+    // name ("an analytical balance": a scale, where a balance alone is mostly a state).
+    let name_from = (0..name_from)
+        .find(|&start| {
+            let compound = words[start..].join(" ");
+            ground::noun_lemma(&compound).is_some() && ground::verdict(&compound) == Verdict::Object
+        })
+        .unwrap_or(name_from);
     let name = &words[name_from..];
     let last = words[words.len() - 1];
     let bare = np.det.is_none()

@@ -917,3 +917,16 @@ fn a_number_word_that_begins_a_kind_is_part_of_its_name() {
     assert_eq!(beds[1].noun, "twin bed");
     assert_eq!(find(&r, "armchair").count, Count::Exactly(1));
 }
+
+#[test]
+fn an_adjective_in_a_wordnet_compound_is_part_of_the_name() {
+    // "balance" alone is mostly a state; "analytical balance" is a scale.
+    let r = read("A lab bench with an analytical balance and a clean beaker.");
+    assert!(
+        r.mentions.iter().any(|m| m.noun == "analytical balance"),
+        "{:?}",
+        r.mentions.iter().map(|m| &m.noun).collect::<Vec<_>>()
+    );
+    // An adjective in no compound stays a modifier.
+    assert!(r.mentions.iter().any(|m| m.category == "beaker"));
+}
