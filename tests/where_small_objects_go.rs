@@ -64,6 +64,11 @@ fn bins_the_prompt_puts_on_the_floor_are_floor_bins() {
         Some("toy_bin")
     );
     assert_eq!(support_sibling("toy_bin", SupportClass::Floor), None);
+    // A kind of the same noun that another generator builds: a shelf on the wall.
+    assert_eq!(
+        support_sibling("shelf", SupportClass::Wall),
+        Some("wall_shelf")
+    );
     assert!(scenesmith::assets::router::naming::names(
         "storage bin",
         "toy_bin"

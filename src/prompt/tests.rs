@@ -930,3 +930,13 @@ fn an_adjective_in_a_wordnet_compound_is_part_of_the_name() {
     // An adjective in no compound stays a modifier.
     assert!(r.mentions.iter().any(|m| m.category == "beaker"));
 }
+
+#[test]
+fn a_clause_after_a_negation_with_a_for_phrase_is_not_negated() {
+    let r = read(
+        "There are no rope barriers anywhere, and a single chair for the attendant sits in the \
+         corner.",
+    );
+    assert!(find(&r, "rope barrier").negated);
+    assert!(!find(&r, "chair").negated);
+}

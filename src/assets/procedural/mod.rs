@@ -286,15 +286,17 @@ pub fn support_sibling(category: &str, support: SupportClass) -> Option<&'static
         return None;
     }
     let head = category.rsplit('_').next()?;
+    let named = |c: &str, q: &Prior| {
+        q.support == support
+            && (c.rsplit('_').next() == Some(head) || q.aliases.iter().any(|a| a == head))
+    };
+    // The same generator's variant first; else a kind of the same head noun built by
+    // another generator (a shelf on the wall: a wall shelf).
     priors()
         .iter()
-        .filter(|(c, q)| {
-            q.generator == p.generator
-                && q.support == support
-                && (c.rsplit('_').next() == Some(head) || q.aliases.iter().any(|a| a == head))
-        })
+        .find(|(c, q)| q.generator == p.generator && named(c, q))
+        .or_else(|| priors().iter().find(|(c, q)| named(c, q)))
         .map(|(c, _)| c.as_str())
-        .next()
 }
 
 /// Every category with a generator, sorted.

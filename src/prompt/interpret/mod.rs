@@ -512,7 +512,9 @@ impl<'a> Interp<'a> {
                         && !word.ends_with("ed")
                         && !word.ends_with("ing");
                 }
-                Item::Np(_) | Item::With | Item::Prep(_) | Item::And | Item::Of => j += 1,
+                Item::Np(_) | Item::With | Item::Prep(_) | Item::And | Item::Of | Item::For => {
+                    j += 1
+                }
                 _ => return false,
             }
         }
