@@ -410,6 +410,15 @@ fn is_seat(lex: &Lexicon, noun: &str) -> bool {
         || noun.ends_with("bench")
 }
 
+/// A seat that goes at a table: a chair, stool or bench, not lounge seating ("a big sofa and a
+/// dining table for eight": eight chairs at the table, the sofa where sofas go).
+fn is_table_seat(lex: &Lexicon, noun: &str) -> bool {
+    is_seat(lex, noun)
+        && !["sofa", "armchair"]
+            .iter()
+            .any(|lounge| covers(lex, noun, lounge) || noun.ends_with(lounge))
+}
+
 fn is_table_like(lex: &Lexicon, noun: &str) -> bool {
     lex.lookup(noun)
         .is_some_and(|e| e.holds && e.support == Support::Floor)

@@ -187,3 +187,21 @@ fn what_a_house_prompt_counts_in_one_room_no_other_room_adds_by_default() {
     let vases: u32 = hotel.iter().map(|(_, p)| p.count_of("vase")).sum();
     assert_eq!(vases, 1, "{hotel:#?}");
 }
+
+#[test]
+fn lounge_seating_is_no_seat_at_a_set_table() {
+    let r =
+        prompt::read("A living room with two armchairs, a big sofa and a dining table for six.");
+    let plan = plan_house_room(&r, 0);
+    let at_table: u32 = plan
+        .furniture
+        .iter()
+        .filter(|w| matches!(&w.arrangement, Arrangement::Around { parent } if parent == "dining table"))
+        .map(|w| {
+            assert!(!w.noun.contains("sofa") && !w.noun.contains("armchair"), "{w:?}");
+            w.count
+        })
+        .sum();
+    assert_eq!(at_table, 6, "{plan:#?}");
+    assert_eq!(plan.count_of("armchair"), 2);
+}

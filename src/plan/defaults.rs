@@ -6,8 +6,8 @@ use std::collections::BTreeMap;
 
 use super::{
     Arrangement, Builder, MAX_COUNT, RoomPlan, SurfaceItem, SurfaceWant, Want, clutter_factor,
-    covers, fill_factor, is_seat, is_table_like, one_per_parent, pick, place_to_arrangement,
-    split_counts,
+    covers, fill_factor, is_seat, is_table_like, is_table_seat, one_per_parent, pick,
+    place_to_arrangement, split_counts,
 };
 use crate::assets::router::naming::footprint;
 use crate::knowledge::{KbItem, Place};
@@ -35,7 +35,7 @@ impl Builder<'_> {
                 .plan
                 .furniture
                 .iter()
-                .any(|w| is_seat(self.lex, &w.noun));
+                .any(|w| is_table_seat(self.lex, &w.noun));
             if !has_seats && seats > 0 && !self.excluded("chair") {
                 let seat = self
                     .kb
@@ -60,7 +60,7 @@ impl Builder<'_> {
                     .plan
                     .furniture
                     .iter_mut()
-                    .filter(|w| is_seat(self.lex, &w.noun))
+                    .filter(|w| is_table_seat(self.lex, &w.noun))
                 {
                     if matches!(w.arrangement, Arrangement::AgainstWall | Arrangement::Free) {
                         w.arrangement = Arrangement::Around {
