@@ -15,14 +15,13 @@ from collections import OrderedDict
 import numpy as np
 from pydrake.all import (
     DiagramBuilder,
-    LoadModelDirectives,
     Parser,
-    ProcessModelDirectives,
     RigidTransform,
 )
 from pydrake.common.eigen_geometry import Quaternion
 from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 
+from drake_bridge.directives import add_directives
 from drake_bridge.errors import BadRequest, ModelError
 from drake_bridge.plant_cache import LoadedScene, _digest, existing_file
 from drake_bridge.protocol import Pose
@@ -62,9 +61,9 @@ def build_sim_scene(directives_path, package_xml, contact, time_step):
     if package_xml is not None:
         parser.package_map().AddPackageXml(package_xml)
     try:
-        ProcessModelDirectives(LoadModelDirectives(directives_path), plant, parser)
+        add_directives(plant, parser, directives_path)
         plant.Finalize()
-    except RuntimeError as e:
+    except (RuntimeError, OSError) as e:
         raise ModelError(f"Drake could not load {directives_path}: {e}") from e
     diagram = builder.Build()
     return LoadedScene(diagram, plant, scene_graph, directives_path, time_step)

@@ -8,6 +8,8 @@ use std::time::Duration;
 use physics_util::*;
 use scenesmith::assets::procedural::AssetRequest;
 use scenesmith::formats::scene_dir::write_scene_dir;
+use scenesmith::physics::as_written::posed_objects;
+use scenesmith::physics::collision::penetrating_pairs;
 use scenesmith::physics::postprocess::{
     PostProcessOptions, post_process, post_process_placing_again,
 };
@@ -90,7 +92,17 @@ fn a_box_two_centimetres_above_a_table_lands_on_it() {
         "one subset: the table and its box"
     );
     assert!(report.manipuland.settle[0].at_rest);
-    assert!(max_penetration(&state) <= 1e-4);
+    // The box sinks into nothing; the table, settled with its load on the compliant floor,
+    // rests a fraction of a millimetre into it.
+    let posed = posed_objects(&state.scene, &state.assets);
+    for pair in penetrating_pairs(&posed, 0.0) {
+        let limit = if pair.a == id || pair.b == id {
+            1e-4
+        } else {
+            5e-4
+        };
+        assert!(pair.depth <= limit, "{pair:?}");
+    }
 }
 
 #[test]

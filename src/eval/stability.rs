@@ -12,7 +12,7 @@ use std::collections::BTreeMap;
 
 use super::{EvalError, Stability, StabilityOptions, Unstable};
 use crate::physics::as_written::posed_objects;
-use crate::physics::groups::{ISLAND_GAP_M, groups_near, near};
+use crate::physics::groups::{ISLAND_GAP_M, groups_near, near, pack_small_groups};
 use crate::physics::protocol::{Simulate, VerdictBound};
 use crate::physics::settle::{SettleOptions, SettleReply, simulate_args};
 use crate::physics::workspace::{Role, Workspace};
@@ -102,17 +102,18 @@ pub fn stabilities(
     if islands.is_empty() {
         return Ok(opts.iter().map(|o| verdicts(o, 0, &[])).collect());
     }
+    // Small islands simulate together (see `pack_small_groups`); a bin's reply holds the
+    // motion of each of its objects, and the verdicts are per object.
+    let bins = pack_small_groups(islands.clone());
     let mut workspace = Workspace::new(state)?;
     let mut directives = Vec::new();
-    for island in &islands {
-        directives.push(workspace.write_subset(state, &island_members(state, island))?);
+    for bin in &bins {
+        directives.push(workspace.write_subset(state, &island_members(state, bin))?);
     }
-    let mut order: Vec<usize> = (0..islands.len()).collect();
-    order.sort_by_key(|&i| std::cmp::Reverse(islands[i].len()));
-    // (option index, island index) of each request, in submission order.
+    // (option index, bin index) of each request, in submission order (largest bins first).
     let mut slots = Vec::new();
     let mut requests = Vec::new();
-    for &i in &order {
+    for i in 0..bins.len() {
         for (k, o) in opts.iter().enumerate() {
             requests.push(simulate_args(
                 &directives[i],
@@ -124,15 +125,20 @@ pub fn stabilities(
     }
     let mut results: Vec<Vec<Option<SettleReply>>> = opts
         .iter()
-        .map(|_| islands.iter().map(|_| None).collect())
+        .map(|_| bins.iter().map(|_| None).collect())
         .collect();
     for ((k, i), reply) in slots.into_iter().zip(pool.call_all::<Simulate>(&requests)) {
         let r = reply.map_err(PhysicsError::from)?;
         tracing::info!(
-            "STB ({:?}) island of {} ({} free): {:.2} s simulated{} in {:.1} s wall ({:.1} ms/step, plant {:.1} s)",
+            "STB ({:?}) {} of {} ({} free): {:.2} s simulated{} in {:.1} s wall ({:.1} ms/step, plant {:.1} s)",
             opts[k].contact.model,
-            islands[i][0],
-            islands[i].len(),
+            if islands.contains(&bins[i]) {
+                "island"
+            } else {
+                "bin"
+            },
+            bins[i][0],
+            bins[i].len(),
             r.sim_time,
             if r.at_rest {
                 ", at rest"

@@ -67,3 +67,73 @@ pub fn groups_near(
     out.sort_by_key(|g| std::cmp::Reverse(g.len()));
     out
 }
+
+/// Groups of at most this many objects are simulated together with other small groups.
+pub const SMALL_GROUP: usize = 3;
+
+/// Most objects in one bin of small groups.
+pub const BIN_OBJECTS: usize = 12;
+
+/// `groups` (largest first) with the small ones (at most [`SMALL_GROUP`] objects) packed
+/// together, in order, into bins of at most [`BIN_OBJECTS`]: groups that cannot touch each
+/// other simulate in one plant as they would apart, and each request costs the bridge a
+/// plant build (about 20 ms per model file) and a round trip, most of the time of a lone
+/// chair's simulation. Larger groups stay alone, so a slow one runs beside the others.
+/// Largest first again.
+pub fn pack_small_groups(groups: Vec<Vec<String>>) -> Vec<Vec<String>> {
+    let mut out: Vec<Vec<String>> = Vec::new();
+    let mut bin: Vec<String> = Vec::new();
+    for g in groups {
+        if g.len() > SMALL_GROUP {
+            out.push(g);
+            continue;
+        }
+        if bin.len() + g.len() > BIN_OBJECTS {
+            out.push(std::mem::take(&mut bin));
+        }
+        bin.extend(g);
+    }
+    if !bin.is_empty() {
+        out.push(bin);
+    }
+    out.sort_by_key(|g| std::cmp::Reverse(g.len()));
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn group(prefix: &str, n: usize) -> Vec<String> {
+        (0..n).map(|i| format!("{prefix}_{i}")).collect()
+    }
+
+    #[test]
+    fn small_groups_share_bins_and_large_ones_stay_alone() {
+        let mut groups = vec![group("bookcase", 30), group("desk", 4)];
+        groups.extend((0..20).map(|i| group(&format!("chair{i}"), 1)));
+        groups.push(group("pair", 2));
+        let packed = pack_small_groups(groups);
+        assert_eq!(packed[0], group("bookcase", 30));
+        assert!(packed.contains(&group("desk", 4)));
+        // 22 objects of small groups in bins of at most 12: two bins, nothing lost or doubled.
+        let bins: Vec<&Vec<String>> = packed
+            .iter()
+            .filter(|g| g[0].starts_with("chair"))
+            .collect();
+        assert_eq!(bins.len(), 2);
+        assert!(bins.iter().all(|b| b.len() <= BIN_OBJECTS));
+        let mut all: Vec<&String> = packed.iter().flatten().collect();
+        assert_eq!(all.len(), 30 + 4 + 20 + 2);
+        all.sort();
+        all.dedup();
+        assert_eq!(all.len(), 56);
+        // A pair is never split across bins.
+        let with_pair: Vec<&Vec<String>> = packed
+            .iter()
+            .filter(|g| g.iter().any(|id| id.starts_with("pair")))
+            .collect();
+        assert_eq!(with_pair.len(), 1);
+        assert!(packed.windows(2).all(|w| w[0].len() >= w[1].len()));
+    }
+}

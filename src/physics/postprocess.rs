@@ -25,7 +25,7 @@ use serde::Serialize;
 use super::PhysicsError;
 use super::as_written::posed_objects;
 use super::collision::penetrating_pairs;
-use super::groups::{ISLAND_GAP_M, groups_near};
+use super::groups::{ISLAND_GAP_M, groups_near, pack_small_groups};
 use super::pool::BridgePool;
 use super::projection::{
     Movable, ProjectionOptions, ProjectionReport, XyRegion, apply_offsets, project_objects,
@@ -199,6 +199,17 @@ pub fn post_process_placing_again(
         _ => Vec::new(),
     };
     state.prune_assets();
+    let projection_s = |r: &Option<ProjectionReport>| r.as_ref().map_or(0.0, |r| r.seconds);
+    tracing::info!(
+        "post-process: furniture projection {:.1} s, settle {:.1} s, cleanup {:.1} s; small objects projection {:.1} s, settle {:.1} s, cleanup {:.1} s; total {:.1} s",
+        projection_s(&furniture.projection),
+        furniture.settle_seconds,
+        projection_s(&furniture.cleanup),
+        projection_s(&manipuland.projection),
+        manipuland.settle_seconds,
+        projection_s(&manipuland.cleanup),
+        t0.elapsed().as_secs_f64()
+    );
     Ok(PostProcessReport {
         furniture,
         manipuland,
@@ -436,6 +447,11 @@ fn subset_report(subset: &str, r: &SettleReply) -> SubsetReport {
     }
 }
 
+/// Farthest a piece of furniture may move while settling with its small objects, metres and
+/// radians (it sinks and leans a millimetre or so into the compliant floor under the load).
+const ENTITY_SHIFT_M: f64 = 0.005;
+const ENTITY_TURN_RAD: f64 = 0.01;
+
 const FURNITURE_STAGE: &str = "post_process/furniture";
 const MANIPULAND_STAGE: &str = "post_process/manipuland";
 
@@ -527,7 +543,7 @@ fn furniture_subsets(state: &SceneState) -> Vec<(String, BTreeMap<String, Role>)
             .iter()
             .filter(|o| in_room(o) && !is_free_furniture(o) && o.kind != ObjectKind::Manipuland)
             .collect();
-        for group in groups_near(state, &free, &[], ISLAND_GAP_M) {
+        for group in pack_small_groups(groups_near(state, &free, &[], ISLAND_GAP_M)) {
             let name = format!("{}/{}", room.id, group[0]);
             let mut members: BTreeMap<String, Role> =
                 fixed.iter().map(|o| (o.id.clone(), Role::Welded)).collect();
@@ -614,7 +630,11 @@ fn manipuland_subsets(
                 members.insert(o.id.clone(), Role::Welded);
             }
         } else {
-            members.insert(entity.clone(), Role::Welded);
+            // Free furniture settles with its load, so the files hold the poses at which the
+            // two rest together: welded here, a bookcase would lean a millimetre under its
+            // books in every later simulation of the files.
+            let free = state.scene.object(&entity).is_some_and(is_free_furniture);
+            members.insert(entity.clone(), if free { Role::Free } else { Role::Welded });
         }
         for i in items {
             members.insert(i, Role::Free);
@@ -683,7 +703,7 @@ pub fn manipuland_phase(
     report.projection = project(state, regions)?;
 
     if let (Some(pool), Some(ws)) = (pool, workspace) {
-        let subsets = manipuland_subsets(state, None);
+        let mut subsets = manipuland_subsets(state, None);
         let before: BTreeMap<String, Pose> = state
             .scene
             .objects
@@ -691,7 +711,28 @@ pub fn manipuland_phase(
             .map(|o| (o.id.clone(), o.world_from_object))
             .collect();
         let t = Instant::now();
-        let results = settle_subsets(state, pool, ws, &subsets, &opts.settle)?;
+        let mut results = settle_subsets(state, pool, ws, &subsets, &opts.settle)?;
+        // A piece of furniture its load moved more than a settle should (a shelf that slid or
+        // tipped, a cabinet pushed into the wall) is put back: that subset settles again with
+        // the piece welded.
+        let threshold = opts.remove_penetrating_above_m.unwrap_or(1e-3);
+        let shifted = entities_moved_too_far(state, &subsets, &results, threshold);
+        if !shifted.is_empty() {
+            let welded: Vec<(String, BTreeMap<String, Role>)> = shifted
+                .iter()
+                .map(|&i| {
+                    let (entity, mut members) = subsets[i].clone();
+                    tracing::info!("settle {entity}: moved under its load; again, welded");
+                    members.insert(entity.clone(), Role::Welded);
+                    (entity, members)
+                })
+                .collect();
+            let again = settle_subsets(state, pool, ws, &welded, &opts.settle)?;
+            for ((&i, subset), result) in shifted.iter().zip(welded).zip(again) {
+                subsets[i] = subset;
+                results[i] = result;
+            }
+        }
         report.settle_seconds = t.elapsed().as_secs_f64();
         let mut doomed: Vec<(String, String)> = Vec::new();
         for ((name, members), result) in subsets.iter().zip(&results) {
@@ -712,6 +753,9 @@ pub fn manipuland_phase(
                 let Some(asset) = state.assets.get(&obj.asset) else {
                     continue;
                 };
+                if obj.kind != ObjectKind::Manipuland {
+                    continue;
+                }
                 if let Some(reason) = manipuland_verdict(asset, obj, b, &p, &opts.rules) {
                     doomed.push((id.clone(), reason));
                 }
@@ -726,6 +770,64 @@ pub fn manipuland_phase(
         report.cleanup = project(state, BTreeMap::new())?;
     }
     Ok(report)
+}
+
+/// Indices of the subsets whose free entity settled more than [`ENTITY_SHIFT_M`] or
+/// [`ENTITY_TURN_RAD`] from where it was, or into another object (deeper than `threshold`
+/// into anything but its own load), with every subset's settled poses applied.
+fn entities_moved_too_far(
+    state: &SceneState,
+    subsets: &[(String, BTreeMap<String, Role>)],
+    results: &[SettleReply],
+    threshold: f64,
+) -> Vec<usize> {
+    let mut scene = state.scene.clone();
+    let mut out = BTreeSet::new();
+    for (i, ((entity, members), result)) in subsets.iter().zip(results).enumerate() {
+        if members.get(entity) != Some(&Role::Free) {
+            continue;
+        }
+        let (Some(p), Some(b)) = (
+            settled_pose(state, result, entity),
+            state.scene.object(entity),
+        ) else {
+            out.insert(i);
+            continue;
+        };
+        let b = b.world_from_object;
+        if (p.translation() - b.translation()).norm() > ENTITY_SHIFT_M
+            || p.angle_to(&b) > ENTITY_TURN_RAD
+        {
+            out.insert(i);
+        }
+        for (id, role) in members {
+            if *role == Role::Free
+                && let Some(p) = settled_pose(state, result, id)
+                && let Some(o) = scene.objects.iter_mut().find(|o| &o.id == id)
+            {
+                o.world_from_object = p;
+            }
+        }
+    }
+    let posed = posed_objects(&scene, &state.assets);
+    for pair in penetrating_pairs(&posed, threshold) {
+        for (i, (entity, members)) in subsets.iter().enumerate() {
+            if members.get(entity) != Some(&Role::Free) {
+                continue;
+            }
+            let other = if pair.a == *entity {
+                &pair.b
+            } else if pair.b == *entity {
+                &pair.a
+            } else {
+                continue;
+            };
+            if members.get(other) != Some(&Role::Free) {
+                out.insert(i);
+            }
+        }
+    }
+    out.into_iter().collect()
 }
 
 /// Removes objects that still penetrate another object deeper than `threshold_m`: of each
