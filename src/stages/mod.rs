@@ -209,6 +209,11 @@ impl StageState {
     /// router builds for the item's description ("wooden play blocks" are the library's
     /// wooden blocks, a variant of the toy block the noun names).
     pub fn is_wanted(scene: &crate::scene::Scene, want: &plan::Want, o: &SceneObject) -> bool {
+        // An object placed for another of the plan's nouns is not this one: a music room's
+        // three music stands are no microphone stands, though one generator builds both.
+        if o.planned.as_deref().is_some_and(|p| p != want.noun) {
+            return false;
+        }
         crate::assets::router::naming::category_of(&want.description) == Some(scene.built_as(o))
             || crate::assets::router::naming::object_is(scene, &want.noun, o)
     }
@@ -341,7 +346,9 @@ impl StageState {
         let category = if routed.primary.strategy == Strategy::Generic {
             routed.primary.category.clone()
         } else {
+            // Words that name no thing the router knows ("old vinyl"): the plan's noun.
             router::parse::object_name(description)
+                .or_else(|| self.planned_noun(&asked))
                 .map(|n| crate::scene::sanitize_name(&n))
                 .unwrap_or_else(|| routed.primary.category.clone())
         };

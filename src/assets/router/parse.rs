@@ -394,7 +394,9 @@ pub fn object_name(description: &str) -> Option<String> {
     let main = &words[..end];
     let Some((start, len, _)) = find_noun(main) else {
         // A noun the library does not know keeps its own name ("samovar").
-        return phrase(&main.join(" ")).unknown_noun;
+        return phrase(&main.join(" "))
+            .unknown_noun
+            .filter(|n| names_a_thing(n));
     };
     let wn = crate::words::wordnet::wordnet();
     let mut from = start;
@@ -414,7 +416,18 @@ pub fn object_name(description: &str) -> Option<String> {
     if let Some(last) = name.last_mut() {
         *last = singular(last);
     }
-    Some(name.join(" "))
+    Some(name.join(" ")).filter(|n| names_a_thing(n))
+}
+
+/// Whether a name's head word can name a thing: not an adjective with no placeable noun
+/// sense. "old" (of "old vinyl", whose material word the library does not build) is an
+/// adjective whose noun is a time, and no object is called that; "notepad" (paper to WordNet)
+/// and "light" (also an adjective, also a lamp) are names.
+fn names_a_thing(name: &str) -> bool {
+    use crate::words::ground;
+    let head = name.rsplit(' ').next().unwrap_or(name);
+    !ground::is_adjective(head)
+        || ground::noun_info(head).is_some_and(|info| !info.placeable.is_empty())
 }
 
 /// Every category the main object of `description` can be built as, first the one built when
@@ -613,5 +626,23 @@ mod tests {
         let r = phrase("two robotic arms");
         assert_eq!(r.unknown_noun.as_deref(), Some("robotic arm"));
         assert!(r.plural);
+    }
+
+    #[test]
+    fn a_name_is_never_a_word_that_names_no_thing() {
+        // "a faint scent of old vinyl": the object the plan makes a vinyl record was called
+        // `old`. A material word the library does not build leaves an adjective in front.
+        let name = object_name("old vinyl");
+        assert!(name.as_deref() != Some("old"), "{name:?}");
+        assert_eq!(
+            object_name("a manicure table").as_deref(),
+            Some("manicure table")
+        );
+        assert_eq!(object_name("a samovar").as_deref(), Some("samovar"));
+        assert_eq!(object_name("a notepad").as_deref(), Some("notepad"));
+        assert_eq!(
+            object_name("a pendant light").as_deref(),
+            Some("pendant light")
+        );
     }
 }
