@@ -102,7 +102,12 @@ def _set_default_pose(plant, body, X_WB):
 
 def add_directives(plant, parser, directives_path):
     """Adds the models and welds of `directives_path` to `plant` (not finalized)."""
-    directives = LoadModelDirectives(directives_path)
+    add_model_directives(plant, parser, LoadModelDirectives(directives_path))
+
+
+def add_model_directives(plant, parser, directives):
+    """Adds the models and welds of `directives` (a loaded `ModelDirectives`) to `plant` (not
+    finalized), as `ProcessModelDirectives` would."""
     steps = _plan(directives, parser)
     if steps is None:
         ProcessModelDirectives(directives, plant, parser)

@@ -17,7 +17,8 @@ The plan, in order (segment names as in `EpisodeResult.trajectory.segments`):
             pre-place (12 cm above the place pose)
   lower     straight down to the place pose (object 1 cm above the surface)
   release   dwell while the fingers open
-  retreat   the lift joint up 10 cm
+  retreat   the gripper up 10 cm: by the lift joint, by IK when the lift is at its top, or
+            a short dwell where it cannot rise
 Every RRT path is shortcut, every move is timed by TOPPRA (timing.py), and the whole plan is
 sampled every 10 ms into one cubic Hermite trajectory of [q, v] that the simulated robot
 tracks (rollout.py). The robot appears at the pick base at home; a house task (the reference
@@ -82,6 +83,9 @@ MAX_PLACES = 8
 #: the clear ones, nearest the reference's edge first, are tried for a second base pose.
 CHECKED_PLACES = 1000
 DRIVE_PLACES = 3 * MAX_PLACES
+#: A reference smaller than this across (m) stands on something whose centre the place
+#: base keeps away from.
+SMALL_REFERENCE_M = 0.6
 #: Scene padding of the straight descend to the grasp (m).
 DESCEND_PADDING_M = 0.002
 #: Commanded finger speed while closing or opening (m/s, each finger; the SDF allows 0.21).
@@ -226,12 +230,13 @@ class Episode:
                                                    region=(lo - 0.35, hi + 0.35))
             self.shape = placement.ObjectShape(self.target_cloud, self.X_WO0, self.rng)
 
-    def support_centre_xy(self):
-        """The horizontal centre of the scene body under the target, or None (on the floor or
-        unknown)."""
-        cloud = self.env_near_target
-        bottom = self.target_cloud.p[:, 2].min()
-        lo, hi = self.target_cloud.p.min(axis=0), self.target_cloud.p.max(axis=0)
+    def support_centre_xy(self, item=None, env=None):
+        """The horizontal centre of the scene body under `item` (a cloud; the target by
+        default, `env` the scene's cloud around it), or None (on the floor or unknown)."""
+        item = self.target_cloud if item is None else item
+        cloud = self.env_near_target if env is None else env
+        bottom = item.p[:, 2].min()
+        lo, hi = item.p.min(axis=0), item.p.max(axis=0)
         under = ((cloud.n[:, 2] > placement.UP_NORMAL_Z) & (np.abs(cloud.p[:, 2] - bottom) < 0.02)
                  & np.all((cloud.p[:, :2] >= lo[:2]) & (cloud.p[:, :2] <= hi[:2]), axis=1))
         if not np.any(under):
@@ -382,9 +387,16 @@ class Episode:
         inset = [min(np.min(p.p_W[:2] - ref_lo), np.min(ref_hi - p.p_W[:2]))
                  for p in self.positions]
         by_edge = [self.positions[k] for k in np.argsort(inset, kind="stable")]
+        # Away from the centre of what the reference stands on when it is a small thing (a
+        # plate on a table: the table's centre), else from the reference's own centre.
+        ref_xy = self.reference_cloud.p[:, :2].mean(axis=0)
+        if np.all(ref_hi - ref_lo < SMALL_REFERENCE_M):
+            lo, hi = self.reference_cloud.p.min(axis=0), self.reference_cloud.p.max(axis=0)
+            env = self.env.sample(0.01, self.rng, region=(lo - 0.05, hi + 0.05))
+            under = self.support_centre_xy(self.reference_cloud, env)
+            ref_xy = ref_xy if under is None else under
         for position in by_edge[:DRIVE_PLACES]:
             with self.clock.phase("base"):
-                ref_xy = self.reference_cloud.p[:, :2].mean(axis=0)
                 bases2 = placement.base_candidates(
                     a.checker, lambda x, y, yaw: self.q_at(a, (x, y, yaw)), position.p_W[:2],
                     position.p_W[:2] - ref_xy)
@@ -472,14 +484,19 @@ class Episode:
         q_open = q_place.copy()
         q_open[c.indices(FINGER_JOINTS)] = FINGER_OPEN_M
         q_open = c.with_held_pose(q_open, X_GO_PARKED)
-        q_retreat = q_open.copy()
-        lift = c.index["lift"]
-        q_retreat[lift] = min(q_retreat[lift] + self.config.retreat_offset_m,
-                              c.plant.GetPositionUpperLimits()[lift])
+        # Up by the lift or, with the lift at its top (a sink reached from above), by IK; a
+        # gripper that cannot rise stays where it let go.
+        q_retreat = self.raised(c, q_open, self.config.retreat_offset_m,
+                                X_WO.multiply(X_GO.inverse()))
         seg += [_Segment("lower", c, [q_preplace, q_place], (closed,) * 2, True),
                 _Segment("release", c, [q_place], (closed, FINGER_OPEN_M), True,
-                         dwell_s=(FINGER_OPEN_M - closed) / FINGER_SPEED_M_S + 0.3),
-                _Segment("retreat", c, [q_open, q_retreat], (FINGER_OPEN_M,) * 2, False)]
+                         dwell_s=(FINGER_OPEN_M - closed) / FINGER_SPEED_M_S + 0.3)]
+        if q_retreat is not None and np.max(np.abs(q_retreat - q_open)) > 1e-6:
+            seg.append(_Segment("retreat", c, [q_open, q_retreat], (FINGER_OPEN_M,) * 2,
+                                False))
+        else:
+            seg.append(_Segment("retreat", c, [q_open], (FINGER_OPEN_M,) * 2, False,
+                                dwell_s=0.1))
         self.segments = seg
 
     def _drive_segments(self, q_lift, q_preplace, closed):

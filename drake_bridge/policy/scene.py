@@ -32,12 +32,13 @@ from pydrake.common.eigen_geometry import AngleAxis
 from pydrake.common.yaml import yaml_load
 from pydrake.geometry import CollisionFilterDeclaration, GeometrySet
 from pydrake.math import RigidTransform
-from pydrake.multibody.parsing import LoadModelDirectives, Parser, ProcessModelDirectives
+from pydrake.multibody.parsing import LoadModelDirectives, Parser
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
 from pydrake.multibody.tree import PrismaticJoint, QuaternionFloatingJoint, RevoluteJoint
 from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 from pydrake.systems.framework import DiagramBuilder
 
+from drake_bridge.directives import add_model_directives
 from drake_bridge.policy.types import BadTask
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -208,7 +209,7 @@ def add_scene(plant, parser, spec, target, target_mode, robot=None):
     named HELD_JOINT, whose 7 positions are the object's pose in the grasp frame, so one
     planning model serves every grasp). Returns (welded instance names sorted, the target's
     body)."""
-    ProcessModelDirectives(spec.directives, plant, parser)
+    add_model_directives(plant, parser, spec.directives)
     instances = [plant.GetModelInstanceByName(name) for name in spec.instances]
     if not plant.HasModelInstanceNamed(target):
         raise BadTask(f"{spec.directives_path}: no model instance named {target!r}")

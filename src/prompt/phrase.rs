@@ -16,6 +16,11 @@ use crate::words::tokens::{Token, TokenKind};
 /// ("floor cushion", "wall mirror", "ceiling hook", "window box", "door wreath", "corner shelf").
 const BUILDING_PART_MODIFIERS: [&str; 6] = ["floor", "wall", "ceiling", "window", "door", "corner"];
 
+/// English modal verbs, a closed class: each is followed by a verb in its base form.
+const MODALS: &[&str] = &[
+    "can", "could", "may", "might", "must", "shall", "should", "will", "would",
+];
+
 /// Pronouns the interpreter resolves.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Pronoun {
@@ -795,6 +800,16 @@ impl<'a> Phrase<'a> {
         self.lexicon_object(np, before, noun)
     }
 
+    /// Whether the modal verb at `k` ("can", "will") is a noun: a modal is always followed
+    /// by a verb ("a chair can seat two"), so one that is not ("an orange can on it", "a tin
+    /// can.") is the noun.
+    fn modal_as_noun(&self, k: usize) -> bool {
+        let wn = crate::words::wordnet::wordnet();
+        word(self.tokens, k).is_some_and(|w| MODALS.contains(&w))
+            && !word(self.tokens, k + 1)
+                .is_some_and(|next| wn.has_pos(next, crate::words::wordnet::Pos::Verb))
+    }
+
     /// Noun-noun compounds: "glass table" — the first noun modifies the second. Returns the
     /// last noun.
     fn absorb_noun_compounds(&self, np: &mut Np, noun: NounAt) -> NounAt {
@@ -809,8 +824,11 @@ impl<'a> Phrase<'a> {
             && start + n < end
             && let Some((n2, e2, p2)) = lex.noun_at(tokens, start + n)
             && start + n + n2 <= end
-            // "glass display case": a longer noun is no verb ("display").
-            && (n2 >= 2 || lex.verb(&tokens[start + n].text).is_none())
+            // "glass display case": a longer noun is no verb ("display"); "an orange can on
+            // the shelf": a modal that no verb follows is a noun.
+            && (n2 >= 2
+                || lex.verb(&tokens[start + n].text).is_none()
+                || self.modal_as_noun(start + n))
         {
             let text: Vec<&str> = tokens[start..start + n]
                 .iter()

@@ -940,3 +940,16 @@ fn a_clause_after_a_negation_with_a_for_phrase_is_not_negated() {
     assert!(find(&r, "rope barrier").negated);
     assert!(!find(&r, "chair").negated);
 }
+
+#[test]
+fn a_modal_that_no_verb_follows_is_a_noun() {
+    let r = read("A bakery with a shelf with an orange can on it. An orange can hold pens.");
+    let cats: Vec<&str> = r.mentions.iter().map(|m| m.category.as_str()).collect();
+    assert_eq!(cats.iter().filter(|c| **c == "can").count(), 1, "{cats:?}");
+    assert_eq!(rel(&r, "can", RelationKind::On).as_deref(), Some("shelf"));
+    // Followed by a verb, "can" is the modal: the orange is the thing.
+    assert!(
+        cats.contains(&"orange") && cats.contains(&"pen"),
+        "{cats:?}"
+    );
+}

@@ -77,6 +77,15 @@ fn may_lie_flat(noun: &str) -> bool {
         .is_some_and(|p| p.typical[0].min(p.typical[1]) < 0.5 * p.typical[2])
 }
 
+/// Whether `noun` is a plate and `entity` a table: a plate goes in front of a seat.
+fn lays_at_a_seat(state: &StageState, entity: &str, noun: &str) -> bool {
+    let scene = &state.scene.scene;
+    super::settings::is_setting_plate(noun)
+        && scene
+            .object(entity)
+            .is_some_and(|o| scene.built_as(o).ends_with("table"))
+}
+
 /// Most copies of a flat thing in one stack when it is put away (folded clothes in a drawer).
 const STORED_STACK: u32 = 3;
 
@@ -109,6 +118,21 @@ impl BuiltinManipulandDesigner {
         let mut need = want.count.saturating_sub(count_on(state, entity, want));
         if need == 0 {
             return;
+        }
+        if want.arrangement == Arrangement::Free && lays_at_a_seat(state, entity, &want.noun) {
+            // A plate on a table is laid where someone sits: at the edge in front of a seat,
+            // not in the middle of the table.
+            if let Ok(v) = cx.call(
+                state,
+                Role::Designer,
+                "place_settings",
+                json!({"surface": format!("{entity}/top"), "items": [want.description], "settings": need}),
+            ) {
+                need = need.saturating_sub(v["placed"].as_array().map_or(0, |a| a.len() as u32));
+            }
+            if need == 0 {
+                return;
+            }
         }
         let tiers = surface_tiers(state, entity, want.explicit);
         let order: Vec<String> = tiers.concat();

@@ -23,11 +23,20 @@ pub struct SettingsArgs {
     pub settings: Option<u32>,
 }
 
+/// Categories laid as a place setting's plate.
+const SETTING_PLATES: [&str; 3] = ["plate", "dinner plate", "dish"];
+
+/// Whether `noun` is a plate that a place setting lays in front of a seat.
+pub(super) fn is_setting_plate(noun: &str) -> bool {
+    crate::assets::router::naming::category_of(noun)
+        .is_some_and(|c| SETTING_PLATES.contains(&c.replace('_', " ").as_str()))
+}
+
 /// Item offsets of a place setting: (u across, v towards the table centre) from the edge
 /// point in front of the seat, metres; and a yaw for cutlery.
 fn setting_offset(noun: &str) -> (f64, f64, f64) {
     match noun {
-        "plate" | "dinner plate" | "dish" => (0.0, 0.19, 0.0),
+        n if SETTING_PLATES.contains(&n) => (0.0, 0.19, 0.0),
         "fork" => (-0.17, 0.19, 0.0),
         "knife" => (0.17, 0.19, 0.0),
         "spoon" => (0.21, 0.19, 0.0),
