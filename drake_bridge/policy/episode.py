@@ -7,8 +7,10 @@ The plan, in order (segment names as in `EpisodeResult.trajectory.segments`):
   descend   straight joint-space move to the grasp (checked with 2 mm scene padding: the open
             fingers pass close to the object and its support by design)
   close     dwell while the fingers close to the grasp's finger target
-  lift      the lift joint up 12 cm (a straight vertical move; IK instead when the lift joint
-            lacks travel); only its upper end is collision-checked, its lower end touches the
+  lift      the lift joint up 12 cm, else 6 or 3 cm under something that hangs above (a
+            straight vertical move; IK instead when the lift joint lacks travel), then, when
+            the object is still within the carrying clearance, drawn back 10 cm along the
+            approach; only its upper end is collision-checked, its lower end touches the
             support by design
   [tuck, drive, unfold]  only when no place location is reachable from the pick base: RRT to
             the arm's home pose, the base driven (straight, else lazy A* on the navigability
@@ -83,6 +85,11 @@ MAX_PLACES = 8
 #: the clear ones, nearest the reference's edge first, are tried for a second base pose.
 CHECKED_PLACES = 1000
 DRIVE_PLACES = 3 * MAX_PLACES
+#: Lift heights tried after the grasp: lift_height_m, half of it, a quarter.
+LIFT_TRIES = 3
+#: Small objects farther than this from the target and the reference (m, horizontally) are
+#: left out of planning (and so of the rollout).
+SMALL_OBJECT_SCOPE_M = 1.5
 #: A reference smaller than this across (m) stands on something whose centre the place
 #: base keeps away from.
 SMALL_REFERENCE_M = 0.6
@@ -123,8 +130,9 @@ class _Segment:
     """A piece of the plan: a move through planning configurations `path` of `model`, or a
     dwell of `dwell_s` at path[0]; fingers commanded from `fingers[0]` to `fingers[1]`."""
 
-    def __init__(self, name, model, path, fingers, held, dwell_s=0.0):
+    def __init__(self, name, model, path, fingers, held, dwell_s=0.0, checked=True):
         self.name, self.model, self.path = name, model, path
+        self.checked = checked  # its timed path is collision-checked (straight moves: no)
         self.fingers, self.held, self.dwell_s = fingers, held, dwell_s
         self.timed = None  # Chain over timing-plant positions, for moves
 
@@ -149,8 +157,9 @@ class Episode:
                                   f"{name!r}")
             if task.target == task.reference:
                 raise BadTask("target and reference are the same instance")
-            self.approach = PlanningModel(self.spec, task.target, "world", config)
-            self.carry = PlanningModel(self.spec, task.target, "held", config)
+            self.planning_spec = self.spec.subset(_planning_scope(self.spec, task))
+            self.approach = PlanningModel(self.planning_spec, task.target, "world", config)
+            self.carry = PlanningModel(self.planning_spec, task.target, "held", config)
         self.home = home_positions()
         self.welded = self.approach.welded
         self.base_poses = []
@@ -264,7 +273,7 @@ class Episode:
             p_com = self.X_WO0.multiply(a.target_body.CalcCenterOfMassInBodyFrame(
                 a.plant_context))
             self.grasps = sample_grasps(self.target_cloud, self.env_near_target, boxes, p_com,
-                                        self.rng)
+                                        self.rng, standoff_m=self.config.pregrasp_offset_m)
         if not self.grasps:
             raise PolicyFailure("no_grasp", f"no antipodal, collision-free grasp of "
                                 f"{self.task.target}")
@@ -303,10 +312,10 @@ class Episode:
 
     # ---------------------------------------------------------------- configurations
     def solve_pick(self, base):
-        """(grasp, q_pre, q_grasp, q_grasp_held, q_lift, X_GO) from base, or None."""
+        """(grasp, q_pre, q_grasp, q_grasp_held, lift path, X_GO) from base, or None."""
         a, c = self.approach, self.carry
-        q_home = self.q_at(a, base)
         for grasp in self.grasps[:MAX_GRASPS]:
+            q_home = self.q_at(a, base, fingers=grasp.finger_open())
             for g in (grasp, grasp.flipped()):
                 back = RigidTransform([0.0, 0.0, -self.config.pregrasp_offset_m])
                 X_pre = g.X_WG.multiply(back)
@@ -318,11 +327,50 @@ class Episode:
                     continue
                 X_GO = g.X_WG.inverse().multiply(self.X_WO0)
                 q_held = self.to_model(c, a, q_grasp, fingers=g.width / 2, X_GO=X_GO)
-                q_lift = self.raised(c, q_held, self.config.lift_height_m, g.X_WG)
-                if q_lift is None or not c.checker.CheckConfigCollisionFree(q_lift):
+                lift_path = self._lift(q_held, g.X_WG)
+                if lift_path is None:
                     continue
-                return g, q_pre, q_grasp, q_held, q_lift, X_GO
+                return g, q_pre, q_grasp, q_held, lift_path, X_GO
         return None
+
+    def _lift(self, q_held, X_WG):
+        """The configurations that take the held object off its support, or None: raised by
+        lift_height_m, else half, else a quarter of it where something hangs above (a range
+        hood over a stove, the next shelf); when the raised object is still within the
+        carrying clearance of the scene (only the scene padding is kept), also drawn back
+        along the approach by pregrasp_offset_m, out of the confined space."""
+        c = self.carry
+        back = RigidTransform([0.0, 0.0, -self.config.pregrasp_offset_m])
+        for k in range(LIFT_TRIES):
+            dz = self.config.lift_height_m / 2 ** k
+            q_lift = self.raised(c, q_held, dz, X_WG)
+            if q_lift is None:
+                continue
+            if c.checker.CheckConfigCollisionFree(q_lift):
+                return [q_lift]
+            if not self._free_with_scene_padding(c, [q_lift]):
+                continue
+            X_up = RigidTransform([0.0, 0.0, dz]).multiply(X_WG)
+            q_back = self.ik(c, X_up.multiply(back), q_lift, self.config.env_padding_m)
+            if (q_back is not None and c.checker.CheckConfigCollisionFree(q_back)
+                    and self._free_with_scene_padding(c, [q_lift, q_back])):
+                return [q_lift, q_back]
+        return None
+
+    def _free_with_scene_padding(self, model, path):
+        """Whether the configuration (or the straight edge) `path` is collision-free with the
+        scene padding on every robot body (no carrying clearance)."""
+        checker = model.checker
+        checker.SetPaddingAllRobotEnvironmentPairs(self.config.env_padding_m)
+        try:
+            if len(path) == 1:
+                return checker.CheckConfigCollisionFree(path[0])
+            return checker.CheckEdgeCollisionFree(path[0], path[1])
+        finally:
+            if self.config.carry_padding_m is not None:
+                for body in model.gripper_bodies + [model.target_body]:
+                    checker.SetPaddingOneRobotBodyAllEnvironmentPairs(
+                        body.index(), self.config.carry_padding_m)
 
     def _descend_free(self, q_pre, q_grasp):
         checker = self.approach.checker
@@ -335,8 +383,8 @@ class Episode:
     def solve_place(self, base, pick, positions):
         """(X_WO, q_preplace, q_place) for the first workable position from base, or None."""
         c = self.carry
-        g, _, _, _, q_lift, X_GO = pick
-        seed = q_lift.copy()
+        g, _, _, _, lift_path, X_GO = pick
+        seed = lift_path[-1].copy()
         seed[c.indices(BASE_JOINTS)] = base
         for position in placement.by_reach(base, positions)[:MAX_PLACES]:
             for yaw in placement.YAWS_RAD:
@@ -365,12 +413,17 @@ class Episode:
         if not bases:
             raise PolicyFailure("no_base_pose", f"no collision-free base pose near "
                                 f"{self.task.target}")
+        # A place beyond any pick base's reach (another room): the first pick will do.
+        far = min(np.linalg.norm(p.p_W[:2] - target_xy) for p in self.positions) > (
+            2 * placement.MAX_REACH_M)
         first_pick = None
         for base in bases[:MAX_BASES]:
             pick = self.solve_pick(base)
             if pick is None:
                 continue
             first_pick = first_pick or (base, pick)
+            if far:
+                break
             place = self.solve_place(base, pick, self.positions)
             if place is not None:
                 self.base_poses = [base]
@@ -457,17 +510,18 @@ class Episode:
         """The segments of the motion (module doc)."""
         a, c = self.approach, self.carry
         base, pick, base2, place = self.choose_configurations()
-        g, q_pre, q_grasp, q_held, q_lift, X_GO = pick
+        g, q_pre, q_grasp, q_held, lift_path, X_GO = pick
+        q_lift = lift_path[-1]
         X_WO, q_preplace, q_place = place
         self.grasp, self.X_GO, self.X_WO_place = g, X_GO, X_WO
-        closed = g.finger_target()
-        self.q_start = self.q_at(a, base)
+        closed, opened = g.finger_target(), g.finger_open()
+        self.q_start = self.q_at(a, base, fingers=opened)
         seg = [_Segment("approach", a, self.rrt(a, self.q_start, q_pre, ARM_PLANNING_JOINTS,
-                                                "approach"), (FINGER_OPEN_M,) * 2, False),
-               _Segment("descend", a, [q_pre, q_grasp], (FINGER_OPEN_M,) * 2, False),
-               _Segment("close", a, [q_grasp], (FINGER_OPEN_M, closed), False,
-                        dwell_s=(FINGER_OPEN_M - closed) / FINGER_SPEED_M_S + 0.5),
-               _Segment("lift", c, [q_held, q_lift], (closed,) * 2, True)]
+                                                "approach"), (opened,) * 2, False),
+               _Segment("descend", a, [q_pre, q_grasp], (opened,) * 2, False),
+               _Segment("close", a, [q_grasp], (opened, closed), False,
+                        dwell_s=(opened - closed) / FINGER_SPEED_M_S + 0.5),
+               _Segment("lift", c, [q_held] + lift_path, (closed,) * 2, True, checked=False)]
         if base2 != base:
             # Turn the short way: the place base's yaw (and with it the place configurations')
             # as the equivalent angle nearest the pick base's.
@@ -482,21 +536,19 @@ class Episode:
         else:
             seg.extend(self._drive_segments(q_lift, q_preplace, closed))
         q_open = q_place.copy()
-        q_open[c.indices(FINGER_JOINTS)] = FINGER_OPEN_M
+        q_open[c.indices(FINGER_JOINTS)] = opened
         q_open = c.with_held_pose(q_open, X_GO_PARKED)
         # Up by the lift or, with the lift at its top (a sink reached from above), by IK; a
         # gripper that cannot rise stays where it let go.
         q_retreat = self.raised(c, q_open, self.config.retreat_offset_m,
                                 X_WO.multiply(X_GO.inverse()))
         seg += [_Segment("lower", c, [q_preplace, q_place], (closed,) * 2, True),
-                _Segment("release", c, [q_place], (closed, FINGER_OPEN_M), True,
-                         dwell_s=(FINGER_OPEN_M - closed) / FINGER_SPEED_M_S + 0.3)]
+                _Segment("release", c, [q_place], (closed, opened), True,
+                         dwell_s=(opened - closed) / FINGER_SPEED_M_S + 0.3)]
         if q_retreat is not None and np.max(np.abs(q_retreat - q_open)) > 1e-6:
-            seg.append(_Segment("retreat", c, [q_open, q_retreat], (FINGER_OPEN_M,) * 2,
-                                False))
+            seg.append(_Segment("retreat", c, [q_open, q_retreat], (opened,) * 2, False))
         else:
-            seg.append(_Segment("retreat", c, [q_open], (FINGER_OPEN_M,) * 2, False,
-                                dwell_s=0.1))
+            seg.append(_Segment("retreat", c, [q_open], (opened,) * 2, False, dwell_s=0.1))
         self.segments = seg
 
     def _drive_segments(self, q_lift, q_preplace, closed):
@@ -538,7 +590,7 @@ class Episode:
                         self._planning_q(plant, s.model, qt, template))
 
                 s.timed = time_waypoints(plant, waypoints, self.config,
-                                         is_free if len(s.path) > 2 else None)
+                                         is_free if len(s.path) > 2 and s.checked else None)
                 if s.timed is None:
                     raise PolicyFailure("planning", f"TOPPRA found no timing ({s.name})")
 
@@ -656,6 +708,39 @@ class Episode:
         duration = sum(row["duration_s"] for row in table)
         return TrajectoryInfo(segments=table, duration_s=duration, max_gripper_speed_m_s=speed,
                               max_gripper_accel_m_s2=accel, max_joint_speed_ratio=ratio)
+
+
+def _planning_scope(spec, task):
+    """The instances the planning models hold: every one but the small objects (scene.json
+    kind "manipuland") farther than SMALL_OBJECT_SCOPE_M from the target and from the
+    reference's bounds. What a small object on a far shelf could change is nothing the
+    robot reaches; a house's hundreds of them made each IK call and collision check slow.
+    Without scene.json every instance stays."""
+    def xy_and_radius(name):
+        obj = spec.objects.get(name)
+        if obj is None:
+            return None
+        xyz = obj.get("world_from_object", {}).get("xyz")
+        bounds = spec.assets.get(obj.get("asset"), {}).get("bounds")
+        if xyz is None:
+            return None
+        radius = 0.0 if bounds is None else 0.5 * float(
+            np.linalg.norm(np.subtract(bounds[1], bounds[0])[:2]))
+        return np.asarray(xyz[:2], dtype=float), radius
+
+    anchors = [a for a in (xy_and_radius(task.target), xy_and_radius(task.reference)) if a]
+    if len(anchors) < 2:
+        return set(spec.instances)
+    keep = set()
+    for name in spec.instances:
+        obj = spec.objects.get(name)
+        here = xy_and_radius(name)
+        if (obj is None or obj.get("kind") != "manipuland" or here is None
+                or name in (task.target, task.reference)
+                or any(np.linalg.norm(here[0] - xy) <= SMALL_OBJECT_SCOPE_M + r
+                       for xy, r in anchors)):
+            keep.add(name)
+    return keep
 
 
 def _bounding_radius(shape):

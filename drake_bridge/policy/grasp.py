@@ -13,7 +13,8 @@ DEPTHS_M, so the contacts sit nearer the finger tips and the tips stay clear of 
 stands in (an apple in a fruit bowl, a can on a board). Closing axes within VERTICAL_AXIS_DEG
 of vertical are skipped (they would pinch the object between table-level finger tips).
 
-Collision check of the open gripper (fingers at 55 mm): the gripper's collision boxes (body,
+Collision check of the open gripper (each finger OPEN_MARGIN_M beyond its contact, at most
+55 mm from the centre line): the gripper's collision boxes (body,
 fingers, and the last arm link's cylinder as its bounding box), inflated by ENV_MARGIN_M, must
 hold no point of the scene's surface cloud near the object (bucketed in 4 cm cells: each box
 is tested against the points of the cells it touches); inflated by TARGET_MARGIN_M they
@@ -34,7 +35,7 @@ from pydrake.common.eigen_geometry import AngleAxis
 from pydrake.geometry import Box, Capsule, Cylinder
 from pydrake.math import RigidTransform, RotationMatrix
 
-from drake_bridge.policy.scene import FINGER_OPEN_M, GRIPPER_BODIES
+from drake_bridge.policy.scene import FINGER_JOINTS, FINGER_OPEN_M, GRIPPER_BODIES
 
 STROKE_M = 2 * FINGER_OPEN_M
 SIDE_CLEARANCE_M = 0.008
@@ -53,6 +54,9 @@ TARGET_MARGIN_M = 0.003
 #: The closed finger target is this far inside each contact: the finger PD (2000 N/m in the
 #: SDF) then squeezes with about 30 N per finger, below the 80 N limit.
 SQUEEZE_M = 0.015
+#: The fingers open this far beyond each contact for the approach (m), not the whole stroke:
+#: an apple in a bowl leaves little room beside it.
+OPEN_MARGIN_M = 0.012
 
 
 @dc.dataclass
@@ -71,6 +75,11 @@ class Grasp:
     def finger_target(self):
         return max(0.0, self.width / 2 - SQUEEZE_M)
 
+    def finger_open(self):
+        """Each finger's position while the gripper approaches, before closing and after
+        releasing: the jaw width plus OPEN_MARGIN_M a side, at most fully open."""
+        return min(FINGER_OPEN_M, self.width / 2 + OPEN_MARGIN_M)
+
     def flipped(self):
         """The same grasp with the gripper turned half a turn about its approach axis (the
         fingers swap sides; the jaw is symmetric)."""
@@ -79,13 +88,15 @@ class Grasp:
 
 
 def gripper_boxes(model, q_open):
-    """The gripper's collision shapes as boxes in the grasp frame G at q_open (fingers open):
-    list of (X_GB, half extents). Cylinders and capsules become their bounding boxes."""
+    """The gripper's collision shapes as boxes in the grasp frame G at q_open (fingers fully
+    open): list of (X_GB, half extents, side), side +1 or -1 for a finger on +y or -y, 0 for
+    the rest. Cylinders and capsules become their bounding boxes."""
     plant = model.plant
     query = model.query(q_open)
     inspector = query.inspector()
     X_WG = model.X_WG(q_open)
     bodies = [plant.GetBodyByName(n, model.robot) for n in GRIPPER_BODIES + ("iiwa_link_7",)]
+    fingers = {plant.GetJointByName(n, model.robot).child_body().index() for n in FINGER_JOINTS}
     out = []
     for body in bodies:
         for gid in plant.GetCollisionGeometriesForBody(body):
@@ -99,7 +110,20 @@ def gripper_boxes(model, q_open):
                                  shape.length() / 2 + shape.radius()])
             else:
                 raise ValueError(f"gripper geometry {inspector.GetName(gid)}: unsupported shape")
-            out.append((X_WG.inverse().multiply(query.GetPoseInWorld(gid)), half))
+            X_GB = X_WG.inverse().multiply(query.GetPoseInWorld(gid))
+            side = float(np.sign(X_GB.translation()[1])) if body.index() in fingers else 0.0
+            out.append((X_GB, half, side))
+    return out
+
+
+def _boxes_open_to(boxes, finger_open):
+    """`boxes` (gripper_boxes at fully open fingers) with the fingers at finger_open (m)."""
+    out = []
+    for X_GB, half, side in boxes:
+        if side != 0.0:
+            shift = side * (finger_open - FINGER_OPEN_M)
+            X_GB = RigidTransform(X_GB.rotation(), X_GB.translation() + [0.0, shift, 0.0])
+        out.append((X_GB, half))
     return out
 
 
@@ -162,9 +186,13 @@ def _frame(y_G, z_G, centre):
 
 
 def sample_grasps(target_cloud, env_cloud, boxes, p_com_W, rng, max_grasps=20,
-                  max_seeds=600):
-    """Up to `max_grasps` collision-free antipodal grasps, best score first, from at most
-    `max_seeds` seed points of the target cloud (a Cloud, world frame) drawn with `rng`."""
+                  max_seeds=600, standoff_m=None):
+    """Up to `max_grasps` collision-free antipodal grasps from at most `max_seeds` seed points
+    of the target cloud (a Cloud, world frame) drawn with `rng`: the best of each approach
+    tilt in turn (straight down, 30, 60, 90 degrees from it; the tilts in the order of their
+    best scores), so that a bottle under a range hood is offered side grasps among the first.
+    With `standoff_m`, the open gripper must also be clear of the scene that far back along
+    the approach (the pre-grasp)."""
     P, N = target_cloud.p, target_cloud.n
     cos_cone = math.cos(math.radians(FRICTION_CONE_DEG))
     sin_vertical = math.sin(math.radians(VERTICAL_AXIS_DEG))
@@ -206,18 +234,30 @@ def sample_grasps(target_cloud, env_cloud, boxes, p_com_W, rng, max_grasps=20,
     candidates.sort(key=lambda c: -c[0])
 
     env_grid = PointGrid(env_cloud.p)
-    out = []
+    tilts = {}  # tilt bucket -> grasps, best first
     for score, top_down, X_WG, p_a, p_b, width in candidates:
-        if len(out) >= max_grasps:
-            break
+        bucket = int(round(math.degrees(math.acos(max(-1.0, min(1.0, top_down)))) / 30.0))
+        found = tilts.setdefault(bucket, [])
+        if len(found) >= max_grasps:
+            if len(tilts) == 4 and all(len(g) >= max_grasps for g in tilts.values()):
+                break
+            continue
         if any(np.linalg.norm(g.X_WG.translation() - X_WG.translation()) < 0.01 and
                g.X_WG.rotation().InvertAndCompose(X_WG.rotation()).ToAngleAxis().angle()
-               < math.radians(20.0) for g in out):
+               < math.radians(20.0) for g in found):
             continue
         R, c = X_WG.rotation().matrix(), X_WG.translation()
-        if _grid_hits_boxes(env_grid, X_WG, boxes, ENV_MARGIN_M):
+        opened = _boxes_open_to(boxes, min(FINGER_OPEN_M, width / 2 + OPEN_MARGIN_M))
+        if _grid_hits_boxes(env_grid, X_WG, opened, ENV_MARGIN_M):
             continue
-        if _any_inside((P - c) @ R, boxes, TARGET_MARGIN_M):
+        if _any_inside((P - c) @ R, opened, TARGET_MARGIN_M):
             continue
-        out.append(Grasp(X_WG, p_a, p_b, width, score, top_down))
-    return out
+        if standoff_m is not None and _grid_hits_boxes(
+                env_grid, X_WG.multiply(RigidTransform([0.0, 0.0, -standoff_m])), opened,
+                ENV_MARGIN_M):
+            continue
+        found.append(Grasp(X_WG, p_a, p_b, width, score, top_down))
+    ranked = sorted((g for g in tilts.values() if g), key=lambda g: -g[0].score)
+    out = [g for k in range(max_grasps) for grasps in ranked if k < len(grasps)
+           for g in [grasps[k]]]
+    return out[:max_grasps]

@@ -23,7 +23,7 @@ object (minimum distance) decide.
 
 Base candidates: the arm's vertical axis (5 cm behind the base centre) at ARM_DISTANCES_M
 from the point, in 24 directions, the base facing the point or, when that collides, side on
-to it; nearest first, then the directions closest to `preferred_dir` (away from the
+to it or square to the room; nearest first, then the directions closest to `preferred_dir` (away from the
 supporting furniture's centre). A candidate must be collision-free at home (the checker,
 scene padding) and hold every `also_reach` point within MAX_REACH_M of the arm axis.
 """
@@ -46,6 +46,9 @@ ARM_DISTANCES_M = (0.5, 0.55, 0.6, 0.65, 0.7, 0.75)
 #: (the arm stands 0.35 m behind the base's front but 0.25 m from its sides, so side on it
 #: reaches 10 cm further over a table).
 BASE_TURNS_RAD = (0.0, math.pi / 2, -math.pi / 2)
+#: Then square to the room (rooms and their furniture are axis-aligned: a base square to a
+#: table fits beside a chair where a turned one does not).
+ROOM_YAWS_RAD = (0.0, math.pi / 2, math.pi, -math.pi / 2)
 MAX_REACH_M = 0.85
 #: Horizontal distances from the arm axis at which a place pose is tried, and the comfortable
 #: one (a top-down grasp at table height reaches about 0.8 m).
@@ -243,8 +246,8 @@ def base_candidates(checker, q_home_at, target_xy, preferred_dir=None, also_reac
             axis = np.asarray(target_xy) + d * u
             if any(np.linalg.norm(np.asarray(p)[:2] - axis) > MAX_REACH_M for p in also_reach):
                 continue
-            for turn in BASE_TURNS_RAD:
-                yaw = math.atan2(-u[1], -u[0]) + turn
+            facing = math.atan2(-u[1], -u[0])
+            for yaw in [facing + turn for turn in BASE_TURNS_RAD] + list(ROOM_YAWS_RAD):
                 base = axis + ARM_AXIS_BEHIND_BASE_M * np.array([math.cos(yaw), math.sin(yaw)])
                 if checker.CheckConfigCollisionFree(q_home_at(base[0], base[1], yaw)):
                     out.append((float(base[0]), float(base[1]), float(yaw)))

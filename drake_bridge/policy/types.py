@@ -146,7 +146,9 @@ class EpisodeResult:
     rollout, frames, output). `welded_instances`: the scene instances whose free body the
     policy welded for speed (every one but the target; instances the directives weld already
     are not listed); `excluded_from_simulation`: the scene instances the rollout left out
-    altogether, their collision geometry being more than 0.3 m from the planned motion.
+    altogether, their collision geometry being more than 0.3 m from the planned motion (or,
+    for small objects, more than 1.5 m from the target and the reference: left out of
+    planning too).
     `base_poses`: the base (x m, y m, yaw rad) used for picking and, if different, for placing.
     `grasp`: the grasp used. `planned_place_pose`: where the plan puts the object;
     `final_poses`: the simulated end state of the free bodies (the target); `dropped_at_s`:

@@ -526,8 +526,8 @@ impl<'a> Phrase<'a> {
         j
     }
 
-    /// "A plush grey sofa": a one-word noun WordNet also reads as an adjective, followed by a
-    /// colour, material or size word, is an adjective.
+    /// "A plush grey sofa", "a compact mid-century cafe": a one-word noun WordNet also reads as
+    /// an adjective, followed by a colour, material, size or style word, is an adjective.
     fn adjective_before_modifier(&self, j: usize) -> bool {
         let (lex, tokens) = (self.lex, self.tokens);
         let Some(w) = self.at(j) else { return false };
@@ -535,6 +535,7 @@ impl<'a> Phrase<'a> {
             lex.color_at(tokens, j + 1).is_some()
                 || lex.material(x).is_some()
                 || lex.size_adjective(x).is_some()
+                || lex.style_at(tokens, j + 1).is_some()
         });
         lex.noun_at(tokens, j).is_some_and(|(n, ..)| n == 1)
             && !lex.is_plural(w)

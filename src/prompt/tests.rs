@@ -953,3 +953,10 @@ fn a_modal_that_no_verb_follows_is_a_noun() {
         "{cats:?}"
     );
 }
+
+#[test]
+fn a_noun_that_is_also_an_adjective_before_a_style_word_is_an_adjective() {
+    let r = read("A compact mid-century cafe with a counter and a chair.");
+    let cats: Vec<&str> = r.mentions.iter().map(|m| m.category.as_str()).collect();
+    assert_eq!(cats, ["counter", "chair"], "{cats:?}");
+}

@@ -282,7 +282,7 @@ fn split_plans(
     let mut per: BTreeMap<String, RoomPlan> = BTreeMap::new();
     // Default small objects each piece may still take (`clutter::piece_budget`).
     let mut budget: BTreeMap<String, u32> = BTreeMap::new();
-    for group in &plan.surfaces {
+    for group in &contents_with_their_containers(&plan.surfaces) {
         let mut hosts: Vec<&(String, String)> = furniture
             .iter()
             .filter(|(_, cat)| {
@@ -351,6 +351,32 @@ fn split_plans(
         }
     }
     per.into_iter().collect()
+}
+
+/// `groups` with each "anywhere" item that goes inside a container ("a fruit bowl with a
+/// fruit in it") moved to the group of the furniture that holds the container, so that both
+/// go to the same piece.
+fn contents_with_their_containers(groups: &[SurfaceWant]) -> Vec<SurfaceWant> {
+    let mut out = groups.to_vec();
+    let holder = |out: &[SurfaceWant], container: &str, not: usize| {
+        out.iter()
+            .enumerate()
+            .position(|(k, g)| k != not && g.items.iter().any(|w| w.noun == container))
+    };
+    for i in 0..out.len() {
+        if out[i].parent != "any" {
+            continue;
+        }
+        let items = std::mem::take(&mut out[i].items);
+        for want in items {
+            let to = match &want.arrangement {
+                Arrangement::Inside { parent } => holder(&out, parent, i),
+                _ => None,
+            };
+            out[to.unwrap_or(i)].items.push(want);
+        }
+    }
+    out
 }
 
 /// Most extra hosts tried for small objects their own furniture could not hold.

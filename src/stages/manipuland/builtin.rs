@@ -77,6 +77,16 @@ fn may_lie_flat(noun: &str) -> bool {
         .is_some_and(|p| p.typical[0].min(p.typical[1]) < 0.5 * p.typical[2])
 }
 
+/// Whether the room's plan asks for a `container` that no stage has placed yet.
+fn container_to_come(state: &StageState, container: &str) -> bool {
+    state
+        .plan
+        .surfaces
+        .iter()
+        .flat_map(|g| &g.items)
+        .any(|w| w.noun == container && w.count > 0)
+}
+
 /// Whether `noun` is a plate and `entity` a table: a plate goes in front of a seat.
 fn lays_at_a_seat(state: &StageState, entity: &str, noun: &str) -> bool {
     let scene = &state.scene.scene;
@@ -169,6 +179,11 @@ impl BuiltinManipulandDesigner {
                     .map(|o| o.id.clone())
                     .collect();
                 containers.sort_by_key(|c| c != entity);
+                if containers.is_empty() && container_to_come(state, parent) {
+                    // "a fruit bowl with a fruit in it": the fruit waits for its bowl, which a
+                    // later piece of furniture holds; not loose on the first counter.
+                    return;
+                }
                 for c in containers {
                     if need == 0 {
                         break;
@@ -303,7 +318,10 @@ impl BuiltinManipulandDesigner {
                     );
                 }
             }
-            for want in &group.items {
+            // Containers before what goes inside them.
+            let mut items: Vec<&Want> = group.items.iter().collect();
+            items.sort_by_key(|w| matches!(w.arrangement, Arrangement::Inside { .. }));
+            for want in items {
                 Self::fill_want(state, cx, &entity, want, alternate);
             }
         }
