@@ -442,3 +442,41 @@ fn a_piece_placed_for_one_plan_noun_does_not_count_for_another() {
             .collect::<Vec<_>>()
     );
 }
+
+#[test]
+fn a_lone_plate_lies_at_a_seat_and_the_fruit_goes_in_its_bowl() {
+    let prompt = "A compact mid-century cafe with a dining table with a plate on it, a fruit \
+                  bowl with a fruit on it, a chair, and a counter.";
+    let (state, _) = build_scene(prompt, 1, "plate_at_seat", &Backend::Builtin).unwrap();
+    let objects = &state.scene.objects;
+    let find = |cat: &str| {
+        objects
+            .iter()
+            .find(|o| o.category == cat)
+            .unwrap_or_else(|| panic!("no {cat}"))
+    };
+    let (table, plate, bowl, fruit) = (
+        find("dining_table"),
+        find("plate"),
+        find("fruit_bowl"),
+        find("fruit"),
+    );
+    assert!(
+        matches!(&fruit.support, Support::Object { parent, .. } if *parent == bowl.id),
+        "the fruit rests on {:?}, not in its bowl",
+        fruit.support
+    );
+    // At a seat: within 0.3 m of the table top's edge, not in its middle.
+    let local = table
+        .world_from_object
+        .inverse()
+        .compose(&plate.world_from_object);
+    let p = local.translation();
+    let top = &state.scene.assets[&table.asset].surfaces[0];
+    let (hw, hd) = (top.size[0] / 2.0, top.size[1] / 2.0);
+    let to_edge = (hw - p.x.abs()).min(hd - p.y.abs());
+    assert!(
+        to_edge < 0.3,
+        "the plate lies {to_edge:.2} m in from the edge"
+    );
+}

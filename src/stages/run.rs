@@ -622,3 +622,55 @@ pub fn furnish_room_resumable(
     scene.prune_assets();
     Ok((scene, rec.summaries))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn want(noun: &str, arrangement: Arrangement) -> Want {
+        Want {
+            noun: noun.to_string(),
+            description: noun.to_string(),
+            count: 1,
+            explicit: true,
+            at_least: false,
+            arrangement,
+            height_m: None,
+            parent_instance: None,
+        }
+    }
+
+    fn group(parent: &str, items: Vec<Want>) -> SurfaceWant {
+        SurfaceWant {
+            parent: parent.to_string(),
+            items,
+            place_settings: false,
+        }
+    }
+
+    #[test]
+    fn an_item_for_a_container_goes_with_the_furniture_that_holds_the_container() {
+        let inside = Arrangement::Inside {
+            parent: "fruit bowl".to_string(),
+        };
+        let groups = vec![
+            group(
+                "any",
+                vec![
+                    want("fruit", inside.clone()),
+                    want("vase", Arrangement::Free),
+                ],
+            ),
+            group("dining table", vec![want("fruit bowl", Arrangement::Free)]),
+            group("counter", vec![want("kettle", Arrangement::Free)]),
+        ];
+        let out = contents_with_their_containers(&groups);
+        let nouns = |g: &SurfaceWant| g.items.iter().map(|w| w.noun.clone()).collect::<Vec<_>>();
+        assert_eq!(nouns(&out[0]), ["vase"]);
+        assert_eq!(nouns(&out[1]), ["fruit bowl", "fruit"]);
+        assert_eq!(nouns(&out[2]), ["kettle"]);
+        // A container nobody plans: the item stays where it was.
+        let lone = contents_with_their_containers(&[group("any", vec![want("fruit", inside)])]);
+        assert_eq!(nouns(&lone[0]), ["fruit"]);
+    }
+}
