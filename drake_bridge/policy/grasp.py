@@ -40,7 +40,6 @@ from drake_bridge.policy.scene import FINGER_JOINTS, FINGER_OPEN_M, GRIPPER_BODI
 STROKE_M = 2 * FINGER_OPEN_M
 SIDE_CLEARANCE_M = 0.008
 MAX_WIDTH_M = STROKE_M - 2 * SIDE_CLEARANCE_M
-MIN_WIDTH_M = 0.005
 LINE_TOL_M = 0.004
 FRICTION_CONE_DEG = 20.0
 VERTICAL_AXIS_DEG = 25.0
@@ -54,6 +53,9 @@ TARGET_MARGIN_M = 0.003
 #: The closed finger target is this far inside each contact: the finger PD (2000 N/m in the
 #: SDF) then squeezes with about 30 N per finger, below the 80 N limit.
 SQUEEZE_M = 0.015
+#: The narrowest jaw width taken: the fingers can squeeze it by the full SQUEEZE_M (a 9 mm
+#: cup rim, closed to the stops, is held with 9 N and slips).
+MIN_WIDTH_M = 2 * SQUEEZE_M
 #: The fingers open this far beyond each contact for the approach (m), not the whole stroke:
 #: an apple in a bowl leaves little room beside it.
 OPEN_MARGIN_M = 0.012
