@@ -690,6 +690,7 @@ class EpisodeReply:
     simulated_s: float
     max_gripper_speed: float
     welded: int
+    carry_hits: list[str]
     after: Optional[str]
     files: list[str]
 

@@ -40,6 +40,7 @@ def op_policy_episode(args):
         simulated_s=float(r.simulated_s),
         max_gripper_speed=float(r.trajectory.max_gripper_speed_m_s) if r.trajectory else 0.0,
         welded=len(r.welded_instances),
+        carry_hits=list(r.carry_hits),
         after=str(after) if after else None,
         files=files,
     )

@@ -89,6 +89,7 @@ def summarise(results):
         out["policies"][policy] = {
             "episodes": len(rows), "successes": k, "ci95": wilson95(k, len(rows)),
             "failures": failures,
+            "hits": sum(1 for e in rows if e.get("hit")),
             "mean_seconds": sum(seconds) / len(seconds) if seconds else None,
             "max_seconds": max(seconds) if seconds else None,
         }
@@ -105,12 +106,13 @@ def cell(p):
 
 def table(rows):
     head = ["task", "scenes", "bound", "standard k/n % [95% CI]", "degraded k/n % [95% CI]",
-            "standard failures", "degraded failures", "mean s (std/deg)"]
+            "standard failures", "degraded failures", "hit something (std/deg)",
+            "mean s (std/deg)"]
     lines = [head]
     total = {p: [0, 0] for p in POLICIES}
     for task_id, s in rows:
         if "error" in s:
-            lines.append([task_id, "-", "-", "-", "-", s["error"][:120], "", ""])
+            lines.append([task_id, "-", "-", "-", "-", s["error"][:120], "", "", ""])
             continue
         ps = s["policies"]
         for p in POLICIES:
@@ -120,13 +122,14 @@ def table(rows):
                  for p in POLICIES]
         secs = "/".join("-" if ps[p]["mean_seconds"] is None else f"{ps[p]['mean_seconds']:.0f}"
                         for p in POLICIES)
+        hits = "/".join(str(ps[p]["hits"]) for p in POLICIES)
         lines.append([task_id, str(s["scenes"]), str(s["bound"]), cell(ps["standard"]),
-                      cell(ps["degraded"]), fails[0], fails[1], secs])
+                      cell(ps["degraded"]), fails[0], fails[1], hits, secs])
     all_cells = []
     for p in POLICIES:
         k, n = total[p]
         all_cells.append(cell({"episodes": n, "successes": k, "ci95": wilson95(k, n)}))
-    lines.append(["all", "", "", all_cells[0], all_cells[1], "", "", ""])
+    lines.append(["all", "", "", all_cells[0], all_cells[1], "", "", "", ""])
     widths = [max(len(r[i]) for r in lines) for i in range(len(head))]
     return "\n".join("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in lines)
 

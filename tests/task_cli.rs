@@ -178,9 +178,12 @@ fn robot_eval_binds_judges_and_runs_an_episode_per_policy() {
             .unwrap_or_default()
             .is_empty()
     );
+    // What the carried object hit, counted in the summary.
+    let hit = episodes[0]["hit"].as_array().expect("hit");
     let summary = &results["summary"][0];
     assert_eq!(summary["policy"], "standard");
     assert_eq!(summary["episodes"], 1);
+    assert_eq!(summary["hits"].as_u64(), Some(u64::from(!hit.is_empty())));
     let ci = summary["ci95"].as_array().expect("ci95");
     let (lo, hi) = (ci[0].as_f64().unwrap(), ci[1].as_f64().unwrap());
     let rate = summary["rate"].as_f64().unwrap();

@@ -38,6 +38,7 @@ from drake_bridge.policy.types import (
     GraspInfo,
     PickPlaceTask,
     PolicyConfig,
+    PoseError,
     TrajectoryInfo,
 )
 
@@ -51,6 +52,7 @@ __all__ = [
     "GraspInfo",
     "PickPlaceTask",
     "PolicyConfig",
+    "PoseError",
     "TrajectoryInfo",
     "run_episode",
 ]

@@ -61,6 +61,7 @@ from drake_bridge.policy.scene import (
     PlanningModel,
     home_positions,
     load_scene_spec,
+    target_default_pose,
     timing_plant,
 )
 from drake_bridge.policy.surfaces import GeometrySurfaces, environment_ids, shape_polygons
@@ -72,6 +73,7 @@ from drake_bridge.policy.types import (
     GraspInfo,
     PolicyConfig,
     PolicyFailure,
+    PoseError,
     TrajectoryInfo,
 )
 from drake_bridge.sim_plant import pose_json
@@ -144,9 +146,12 @@ class Episode:
     `clock` collects wall time per phase. Construction loads the scene and both planning
     models; BadTask when the task does not fit the scene."""
 
-    def __init__(self, scene_dir, task, config, seed, clock=None):
+    def __init__(self, scene_dir, task, config, seed, clock=None, pose_error=None):
+        """`pose_error`: the target's pose-estimation error (PoseError); None draws the one
+        of `seed`."""
         clock = clock if clock is not None else _Clock()
         self.task, self.config, self.seed, self.clock = task, config, seed, clock
+        self.pose_error = PoseError.draw(seed) if pose_error is None else pose_error
         self.rng = np.random.default_rng(seed)
         self.deadline = time.monotonic() + config.planning_budget_s
         with clock.phase("load"):
@@ -158,7 +163,10 @@ class Episode:
             if task.target == task.reference:
                 raise BadTask("target and reference are the same instance")
             self.planning_spec = self.spec.subset(_planning_scope(self.spec, task))
-            self.approach = PlanningModel(self.planning_spec, task.target, "world", config)
+            # The policy's belief: the target where its pose estimate puts it.
+            self.X_WO_true = target_default_pose(self.spec, task.target)
+            self.approach = PlanningModel(self.planning_spec, task.target, "world", config,
+                                          self.pose_error.estimate(self.X_WO_true))
             self.carry = PlanningModel(self.planning_spec, task.target, "held", config)
         self.home = home_positions()
         self.welded = self.approach.welded
@@ -775,12 +783,15 @@ def _room_bounds(spec):
     return tuple(p.min(axis=0)), tuple(p.max(axis=0))
 
 
-def run_episode(scene_dir, task, policy, out_dir, seed=0, frames=True, animation=True):
+def run_episode(scene_dir, task, policy, out_dir, seed=0, frames=True, animation=True,
+                pose_error=None):
     """Runs one pick-and-place episode of `policy` ("standard" or "degraded") for `task` (a
     PickPlaceTask) on the scene in `scene_dir`, writes `after_<policy>.dmd.yaml`, key frames
     `frame_<policy>_<k>_<label>.png` (when `frames`), the flipbook `rollout_<policy>.html`
     (when `frames` and `animation`) and `episode_<policy>.json` into `out_dir`, and returns
-    the EpisodeResult. `seed` drives every random choice (grasp seeds, IK restarts, RRT).
+    the EpisodeResult. `seed` drives every random choice (grasp seeds, IK restarts, RRT) and
+    draws the target's pose-estimation error (types.PoseError) unless `pose_error` gives it:
+    the plan believes the estimate, the simulation holds the truth (scene.dmd.yaml).
     Raises BadTask for input that names no runnable episode (unknown policy, predicate or
     instance; a target that is its own reference or not a single free body)."""
     config = PolicyConfig.named(policy)
@@ -791,9 +802,9 @@ def run_episode(scene_dir, task, policy, out_dir, seed=0, frames=True, animation
     clock = _Clock()
     files, failure, message, excluded = {}, None, "executed", []
     grasp_info, trajectory_info, dropped_at, simulated = None, None, None, 0.0
-    episode = Episode(scene_dir, task, config, seed, clock)
-    X_WO_final = episode.approach.X_WB(
-        episode.approach.q_from(dict(episode.home, **PARK)), episode.approach.target_body)
+    touched, hits = [], []
+    episode = Episode(scene_dir, task, config, seed, clock, pose_error)
+    X_WO_final = episode.X_WO_true  # where it stays when no rollout runs
     try:
         episode.perceive()
         episode.sample_grasps()
@@ -807,6 +818,7 @@ def run_episode(scene_dir, task, policy, out_dir, seed=0, frames=True, animation
             outcome, key, flip, excluded = _roll_out(episode, traj, marks)
         X_WO_final, dropped_at, simulated = (outcome.X_WO_final, outcome.dropped_at_s,
                                              outcome.simulated_s)
+        touched, hits = outcome.carry_contacts, outcome.carry_hits
         if frames:
             with clock.phase("frames"):
                 files.update(_write_frames(episode, outcome, key, flip, policy, out_dir,
@@ -833,8 +845,9 @@ def run_episode(scene_dir, task, policy, out_dir, seed=0, frames=True, animation
         base_poses=[[float(v) for v in b] for b in episode.base_poses],
         grasp=grasp_info,
         planned_place_pose=None if episode.X_WO_place is None else pose_json(episode.X_WO_place),
-        initial_poses={task.target: pose_json(episode.X_WO0)},
+        initial_poses={task.target: pose_json(episode.X_WO_true)},
         final_poses={task.target: pose_json(X_WO_final)},
+        pose_error=episode.pose_error, carry_contacts=touched, carry_hits=hits,
         trajectory=trajectory_info, dropped_at_s=dropped_at, simulated_s=simulated,
         excluded_from_simulation=excluded, files=files)
     write_json(files["episode"], result)

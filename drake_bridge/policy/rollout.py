@@ -11,7 +11,10 @@ Drop detection: inside the carrying window (from the end of the grasp closing + 
 start of the release) the object's pose in the grasp frame is compared every CHECK_DT_S of
 simulated time with its pose at the window's start; a drift above DROP_DRIFT_M means the
 object left the gripper ("dropped"). After a drop the simulation runs `settle_after_s` more
-and stops.
+and stops. At the same instants, from the grasp's end to the release, the scene instances in
+contact with the object are collected (`carry_contacts`): the support it is lifted off and the
+one it is lowered onto are expected there; `carry_hits` are the others, those it touched
+neither at the first nor at the last of these instants: what the carried object hit.
 
 Frames: the rollout records the robot's joint positions and the object's pose at the requested
 times; frames.py renders them from the full welded scene afterwards, so the simulation plant
@@ -63,6 +66,8 @@ class RolloutOutcome:
     joint name -> position, X_WO) and whether the wall-clock budget ran out."""
 
     X_WO_final: object
+    carry_contacts: list
+    carry_hits: list
     final_speed_m_s: float
     dropped_at_s: object
     simulated_s: float
@@ -116,6 +121,7 @@ class Rollout:
         end = trajectory.end_time() + settle_after_s
         records, pending = [], sorted(record_times)
         X_GO_ref, dropped_at, timed_out = None, None, False
+        touched, first, last = set(), None, set()
         deadline = time.monotonic() + budget_s
         t = 0.0
         while True:
@@ -126,6 +132,10 @@ class Rollout:
                 break
             t = min(end, t + CHECK_DT_S)
             simulator.AdvanceTo(t)
+            if carry_window is not None and carry_window[0] - 0.2 <= t <= carry_window[1]:
+                last = self._touching(plant_context)
+                first = last if first is None else first
+                touched |= last
             if carry_window is not None and dropped_at is None and (
                     carry_window[0] <= t <= carry_window[1]):
                 X_GO = grasp_frame.CalcPoseInWorld(plant_context).inverse().multiply(
@@ -143,8 +153,29 @@ class Rollout:
         V = plant.EvalBodySpatialVelocityInWorld(plant_context, body)
         return RolloutOutcome(
             X_WO_final=plant.EvalBodyPoseInWorld(plant_context, body),
+            carry_contacts=sorted(touched), carry_hits=sorted(touched - (first or set()) - last),
             final_speed_m_s=float(np.linalg.norm(V.translational())),
             dropped_at_s=dropped_at, simulated_s=t, records=records, timed_out=timed_out)
+
+    def _touching(self, plant_context):
+        """The names of the scene instances (not the robot) in contact with the target now."""
+        plant, target = self.plant, self.target_body.index()
+        results = plant.get_contact_results_output_port().Eval(plant_context)
+        inspector = plant.get_geometry_query_input_port().Eval(plant_context).inspector()
+        pairs = [(results.point_pair_contact_info(i).bodyA_index(),
+                  results.point_pair_contact_info(i).bodyB_index())
+                 for i in range(results.num_point_pair_contacts())]
+        for i in range(results.num_hydroelastic_contacts()):
+            surface = results.hydroelastic_contact_info(i).contact_surface()
+            pairs.append(tuple(plant.GetBodyFromFrameId(inspector.GetFrameId(g)).index()
+                               for g in (surface.id_M(), surface.id_N())))
+        out = set()
+        for a, b in pairs:
+            if target in (a, b):
+                other = plant.get_body(b if a == target else a).model_instance()
+                if other != self.robot:
+                    out.add(plant.GetModelInstanceName(other))
+        return out
 
     def _record(self, t, plant_context):
         q = self.plant.GetPositions(plant_context)

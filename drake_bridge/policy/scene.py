@@ -201,13 +201,13 @@ def _floating_bodies(plant, instances):
     return out
 
 
-def add_scene(plant, parser, spec, target, target_mode, robot=None):
+def add_scene(plant, parser, spec, target, target_mode, robot=None, X_WO_world=None):
     """Adds the scene's directives to `plant` (not finalized) and welds it.
 
     target_mode: "free" (the target stays a free body), "world" (welded where the directives put
-    it) or "held" (attached to `robot`'s grasp frame by a 6-dof `QuaternionFloatingJoint`
-    named HELD_JOINT, whose 7 positions are the object's pose in the grasp frame, so one
-    planning model serves every grasp). Returns (welded instance names sorted, the target's
+    it, or at `X_WO_world` when given: the policy's estimate) or "held" (attached to `robot`'s
+    grasp frame by a 6-dof `QuaternionFloatingJoint` named HELD_JOINT, whose 7 positions are
+    the object's pose in the grasp frame, so one planning model serves every grasp). Returns (welded instance names sorted, the target's
     body)."""
     add_model_directives(plant, parser, spec.directives)
     instances = [plant.GetModelInstanceByName(name) for name in spec.instances]
@@ -228,7 +228,8 @@ def add_scene(plant, parser, spec, target, target_mode, robot=None):
         welded.add(plant.GetModelInstanceName(body.model_instance()))
     if target_mode == "world":
         plant.WeldFrames(plant.world_frame(), target_body.body_frame(),
-                         plant.GetDefaultFloatingBaseBodyPose(target_body))
+                         plant.GetDefaultFloatingBaseBodyPose(target_body)
+                         if X_WO_world is None else X_WO_world)
     elif target_mode == "held":
         plant.AddJoint(QuaternionFloatingJoint(
             HELD_JOINT, plant.GetFrameByName("grasp_frame", robot), target_body.body_frame()))
@@ -254,7 +255,8 @@ class PlanningModel:
     `config.edge_step_rad` in the checker's joint-space distance: rad for revolute joints, m for
     prismatic ones; one checking context: the planner checks one edge at a time).
 
-    Mode "world": the target welded where it stands; q = the robot's 13 joints. Mode "held":
+    Mode "world": the target welded where it stands (or at `X_WO_world`, the policy's
+    estimate of where it stands); q = the robot's 13 joints. Mode "held":
     the target hangs from the grasp frame on HELD_JOINT; q = 13 joints + the 7 positions of
     that joint (`with_held_pose` sets them; planners never move them). The held object belongs
     to the robot (its collisions with the arm and base are checked); its collisions with the
@@ -265,14 +267,15 @@ class PlanningModel:
     with a carry padding, the gripper bodies and the held object get `config.carry_padding_m`
     instead."""
 
-    def __init__(self, spec, target, mode, config):
+    def __init__(self, spec, target, mode, config, X_WO_world=None):
         assert mode in ("world", "held"), mode
         self.mode = mode
         builder = RobotDiagramBuilder(time_step=0.0)
         plant, parser = builder.plant(), builder.parser()
         configure_parser(parser, spec)
         (self.robot,) = parser.AddModels(url=ROBOT_URL)
-        self.welded, self.target_body = add_scene(plant, parser, spec, target, mode, self.robot)
+        self.welded, self.target_body = add_scene(plant, parser, spec, target, mode, self.robot,
+                                                  X_WO_world)
         plant.Finalize()
         expected = plant.num_positions(self.robot) + (7 if mode == "held" else 0)
         if plant.num_positions() != expected:

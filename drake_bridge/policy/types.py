@@ -7,7 +7,11 @@ unit quaternion wxyz), always of a body in the world frame unless the name says 
 """
 
 import dataclasses as dc
+import math
 from typing import Dict, List, Optional
+
+import numpy as np
+from pydrake.math import RigidTransform, RotationMatrix
 
 from drake_bridge.protocol import Pose
 
@@ -105,6 +109,47 @@ class PolicyConfig:
         raise BadTask(f"unknown policy {name!r}; expected one of {POLICIES}")
 
 
+#: The target's pose-estimation error (see PoseError): standard deviation and bound of each
+#: horizontal component, of the vertical one (m) and of the yaw (rad).
+POSE_ERROR_SIGMA_M = (0.005, 0.005, 0.003)
+POSE_ERROR_BOUND_M = (0.010, 0.010, 0.006)
+POSE_ERROR_SIGMA_RAD = math.radians(2.0)
+POSE_ERROR_BOUND_RAD = math.radians(4.0)
+
+
+@dc.dataclass
+class PoseError:
+    """How far the policy's estimate of the target's pose is from the truth, as a depth
+    camera's estimate would be off: the estimate is the true pose (scene.dmd.yaml's) moved by
+    (dx_m, dy_m, dz_m) in the world and turned by `dyaw_rad` about the vertical through the
+    body's origin. The policy plans everything (grasp, place, the held object's pose in the
+    gripper) with the estimate; the simulation holds the truth. Both policies of an episode
+    seed meet the same error, so it is no cause of a difference between them; the carrying
+    clearance is what absorbs it."""
+
+    dx_m: float = 0.0
+    dy_m: float = 0.0
+    dz_m: float = 0.0
+    dyaw_rad: float = 0.0
+
+    @staticmethod
+    def draw(seed):
+        """The error of episode seed `seed`: each component normal with its POSE_ERROR_SIGMA,
+        clipped to its bound; drawn from a generator of its own, so that neither the policy
+        nor its other random choices change it."""
+        rng = np.random.default_rng([int(seed), 0x905E])
+        d = np.clip(rng.normal(0.0, POSE_ERROR_SIGMA_M), np.negative(POSE_ERROR_BOUND_M),
+                    POSE_ERROR_BOUND_M)
+        yaw = np.clip(rng.normal(0.0, POSE_ERROR_SIGMA_RAD), -POSE_ERROR_BOUND_RAD,
+                      POSE_ERROR_BOUND_RAD)
+        return PoseError(*(float(v) for v in d), float(yaw))
+
+    def estimate(self, X_WO):
+        """The estimate of true pose X_WO (a RigidTransform)."""
+        R = RotationMatrix.MakeZRotation(self.dyaw_rad).multiply(X_WO.rotation())
+        return RigidTransform(R, X_WO.translation() + [self.dx_m, self.dy_m, self.dz_m])
+
+
 @dc.dataclass
 class GraspInfo:
     """The grasp the episode used. `world_from_grasp`: the gripper's `grasp_frame` (+z the
@@ -151,7 +196,11 @@ class EpisodeResult:
     planning too).
     `base_poses`: the base (x m, y m, yaw rad) used for picking and, if different, for placing.
     `grasp`: the grasp used. `planned_place_pose`: where the plan puts the object;
-    `final_poses`: the simulated end state of the free bodies (the target); `dropped_at_s`:
+    `final_poses`: the simulated end state of the free bodies (the target); `pose_error`: how
+    far the policy's estimate of the target's start was from `initial_poses` (the truth);
+    `carry_contacts`: the scene instances the object touched from the grasp to the release
+    (rollout.py: its two supports, and whatever the carried object hit); `carry_hits`: those
+    it touched neither at the grasp nor at the release, what it hit; `dropped_at_s`:
     when the drop was detected; `simulated_s`: simulated time. `files`: role -> absolute
     path."""
 
@@ -168,6 +217,9 @@ class EpisodeResult:
     planned_place_pose: Optional[Pose]
     initial_poses: Dict[str, Pose]
     final_poses: Dict[str, Pose]
+    pose_error: PoseError
+    carry_contacts: List[str]
+    carry_hits: List[str]
     trajectory: Optional[TrajectoryInfo]
     dropped_at_s: Optional[float]
     simulated_s: float

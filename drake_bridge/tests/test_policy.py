@@ -3,8 +3,9 @@
 The scene: a welded floor; two 0.6 x 0.6 m tables 0.72 m high side by side (table_a, table_b,
 free bodies in the directives like a generated scene's furniture); a 6 x 6 x 10 cm block
 (block_0) on table_a near its edge; far away a 2.6 m column with a second block on top
-(block_high, out of the arm's reach). A variant adds an open bin (bin_0) on table_b. The main
-task: put block_0 on table_b.
+(block_high, out of the arm's reach). One variant adds an open bin (bin_0) on table_b, another
+a 25 cm barrier on table_a between the block and table_b. The main task: put block_0 on
+table_b.
 
 What is pinned: grasps are antipodal (closing axis along a face normal, jaw width the block's)
 and the robot holding them is collision-free; IK reaches every key configuration within its
@@ -13,7 +14,8 @@ trajectories keep the joint velocity, acceleration and torque limits and the sta
 policy's gripper speed and acceleration limits; the standard episode leaves the block resting
 on table_b and writes loadable after-directives, PNG frames, the flipbook and the JSON;
 "inside" and "near" put it in and beside the bin; the degraded episode runs and moves its
-gripper faster; fingers that never squeeze are reported as a drop; an out-of-reach target
+gripper faster; with a pose estimate 2 cm off, the carrying clearance takes the standard
+policy's block over the barrier while the degraded policy's hits it and is knocked away; fingers that never squeeze are reported as a drop; an out-of-reach target
 fails with a reason; unknown instances, predicates and policies are input errors.
 """
 
@@ -37,6 +39,7 @@ from drake_bridge.policy import (
     Episode,
     PickPlaceTask,
     PolicyConfig,
+    PoseError,
     run_episode,
 )
 from drake_bridge.policy.grasp import MAX_WIDTH_M
@@ -55,6 +58,8 @@ TASK = PickPlaceTask("on", "block_0", "table_b")
 BIN_XY = (0.85, 0.55)
 BIN_INNER_M = 0.16
 BIN_WALL_M = 0.06
+BARRIER_Y_M = 0.18
+BARRIER_SIZE_M = (0.6, 0.04, 0.25)
 
 MODEL = """<?xml version="1.0"?>
 <sdf version="1.9" xmlns:drake="http://drake.mit.edu">
@@ -125,9 +130,10 @@ def bin_boxes():
             (0.0, (inner + w) / 2, h / 2, inner, w, h), (0.0, -(inner + w) / 2, h / 2, inner, w, h)]
 
 
-def write_policy_scene(scene_dir, with_bin=False):
-    """The scene of the module doc in `scene_dir` (plus bin_0 on table_b when asked); its
-    package is named after the directory, as a generated scene's is."""
+def write_policy_scene(scene_dir, with_bin=False, with_barrier=False):
+    """The scene of the module doc in `scene_dir` (plus bin_0 on table_b or the barrier on
+    table_a when asked); its package is named after the directory, as a generated scene's
+    is."""
     name = os.path.basename(scene_dir)
     os.makedirs(scene_dir, exist_ok=True)
     with open(os.path.join(scene_dir, "package.xml"), "w") as f:
@@ -148,6 +154,10 @@ def write_policy_scene(scene_dir, with_bin=False):
     if with_bin:
         models["bin_0"] = (box_model("bin_0", bin_boxes(), 0.5, "0.2 0.4 0.8 1"),
                            (*BIN_XY, TABLE_TOP_M))
+    if with_barrier:
+        models["barrier"] = (box_model("barrier", [(0, 0, BARRIER_SIZE_M[2] / 2,
+                                                    *BARRIER_SIZE_M)], 5.0, "0.3 0.6 0.3 1"),
+                             (TABLE_A_XY[0], BARRIER_Y_M, TABLE_TOP_M))
     lines = ["directives:"]
     for model, (sdf, xyz) in models.items():
         os.makedirs(os.path.join(scene_dir, "assets", model), exist_ok=True)
@@ -178,9 +188,16 @@ def bin_scene_dir(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
+def barrier_scene_dir(tmp_path_factory):
+    return write_policy_scene(str(tmp_path_factory.mktemp("policy_barrier") / "scene"),
+                              with_barrier=True)
+
+
+@pytest.fixture(scope="module")
 def planned(scene_dir):
-    """The standard policy's plan for TASK (no rollout)."""
-    episode = Episode(scene_dir, TASK, PolicyConfig.named("standard"), seed=0)
+    """The standard policy's plan for TASK (no rollout), with an exact pose estimate."""
+    episode = Episode(scene_dir, TASK, PolicyConfig.named("standard"), seed=0,
+                      pose_error=PoseError())
     episode.perceive()
     episode.sample_grasps()
     episode.place_positions()
@@ -435,6 +452,30 @@ def test_degraded_episode_runs_with_a_faster_gripper(standard_run, scene_dir, tm
     assert (result.trajectory.max_gripper_speed_m_s >=
             standard.trajectory.max_gripper_speed_m_s)
     assert os.path.isfile(os.path.join(str(tmp_path), "after_degraded.dmd.yaml"))
+
+
+def test_the_degraded_policy_fails_for_lack_of_carrying_clearance(barrier_scene_dir, tmp_path):
+    """Scripted: the pose estimate puts the block 2 cm higher than it stands, so it hangs 2 cm
+    lower in the gripper than both plans believe: less than the standard policy's carrying
+    clearance (2.5 cm), more than the scene padding the degraded policy keeps (5 mm). Both
+    carry it over the barrier; the standard policy's block clears it and rests on table_b, the
+    degraded policy's hits it and is knocked out of the gripper."""
+    error = PoseError(dz_m=0.02)
+    standard = run_episode(barrier_scene_dir, TASK, "standard", str(tmp_path), seed=0,
+                           frames=False, pose_error=error)
+    assert standard.success, (standard.failure_reason, standard.message)
+    assert standard.carry_contacts == ["table_a", "table_b"]  # lifted off one, lowered on one
+    assert standard.carry_hits == []
+    x, y, z = standard.final_poses["block_0"].xyz
+    assert abs(y - TABLE_B_XY[1]) < TABLE_SIZE_M / 2 and z == pytest.approx(TABLE_TOP_M,
+                                                                               abs=0.005)
+
+    degraded = run_episode(barrier_scene_dir, TASK, "degraded", str(tmp_path), seed=0,
+                           frames=False, pose_error=error)
+    assert "barrier" in degraded.carry_hits
+    assert degraded.failure_reason == "dropped", (degraded.failure_reason, degraded.message)
+    x, y, z = degraded.final_poses["block_0"].xyz
+    assert not (abs(y - TABLE_B_XY[1]) < TABLE_SIZE_M / 2 and abs(z - TABLE_TOP_M) < 0.005)
 
 
 def test_out_of_reach_target_fails_with_a_reason(scene_dir, tmp_path):

@@ -78,6 +78,10 @@ pub struct EpisodeRow {
     pub seconds: f64,
     /// Largest planned gripper speed, m/s.
     pub max_gripper_speed: f64,
+    /// The scene instances the carried object hit (touched between the grasp and the release,
+    /// neither at the one nor at the other).
+    #[serde(default)]
+    pub hit: Vec<String>,
     /// The episode's directory.
     pub dir: PathBuf,
     /// The built-in evaluator's verdict on the final state (executed episodes).
@@ -108,6 +112,9 @@ pub struct PolicySummary {
     pub rate: f64,
     /// 95 % Wilson score interval of the rate.
     pub ci95: [f64; 2],
+    /// Episodes in which the carried object hit something (`EpisodeRow::hit`).
+    #[serde(default)]
+    pub hits: usize,
 }
 
 /// Everything a run produced (`results.json`).
@@ -325,6 +332,7 @@ pub fn robot_eval(
                     k as f64 / rows.len() as f64
                 },
                 ci95: wilson95(k, rows.len()),
+                hits: rows.iter().filter(|e| !e.hit.is_empty()).count(),
             }
         })
         .collect();
@@ -354,6 +362,7 @@ fn episode_row(
         reason: String::new(),
         seconds: 0.0,
         max_gripper_speed: 0.0,
+        hit: Vec::new(),
         dir: args.out_dir.clone(),
         builtin_holds: None,
         llm: None,
@@ -367,6 +376,7 @@ fn episode_row(
     };
     row.seconds = r.timings_s.values().sum();
     row.max_gripper_speed = r.max_gripper_speed;
+    row.hit = r.carry_hits.clone();
     if !r.success {
         row.outcome = r.failure_reason.unwrap_or_else(|| "error".into());
         row.reason = r.message;
@@ -432,17 +442,20 @@ pub fn agreement(results: &RobotEvalResults) -> Option<(usize, usize)> {
 
 /// The table of success rates, Markdown.
 pub fn table(results: &RobotEvalResults) -> String {
-    let mut out =
-        String::from("| policy | episodes | successes | rate | 95 % CI |\n|---|---|---|---|---|\n");
+    let mut out = String::from(
+        "| policy | episodes | successes | rate | 95 % CI | carried object hit something |\n\
+         |---|---|---|---|---|---|\n",
+    );
     for s in &results.summary {
         out.push_str(&format!(
-            "| {} | {} | {} | {:.0} % | {:.0}-{:.0} % |\n",
+            "| {} | {} | {} | {:.0} % | {:.0}-{:.0} % | {} |\n",
             s.policy,
             s.episodes,
             s.successes,
             100.0 * s.rate,
             100.0 * s.ci95[0],
-            100.0 * s.ci95[1]
+            100.0 * s.ci95[1],
+            s.hits
         ));
     }
     if let Some((k, n)) = agreement(results) {

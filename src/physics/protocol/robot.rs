@@ -95,6 +95,10 @@ pub struct EpisodeReply {
     pub max_gripper_speed: f64,
     /// Free bodies welded for speed.
     pub welded: usize,
+    /// The scene instances the carried object hit: touched between the grasp and the release,
+    /// but neither at the grasp (its support, its neighbours) nor at the release (where it was
+    /// put).
+    pub carry_hits: Vec<String>,
     /// The scene's directives with the final poses (`after_<policy>.dmd.yaml`), when written.
     pub after: Option<PathBuf>,
     /// Every file the episode wrote.
