@@ -207,8 +207,8 @@ def add_scene(plant, parser, spec, target, target_mode, robot=None, X_WO_world=N
     target_mode: "free" (the target stays a free body), "world" (welded where the directives put
     it, or at `X_WO_world` when given: the policy's estimate) or "held" (attached to `robot`'s
     grasp frame by a 6-dof `QuaternionFloatingJoint` named HELD_JOINT, whose 7 positions are
-    the object's pose in the grasp frame, so one planning model serves every grasp). Returns (welded instance names sorted, the target's
-    body)."""
+    the object's pose in the grasp frame, so one planning model serves every grasp). Returns
+    (welded instance names sorted, the target's body)."""
     add_model_directives(plant, parser, spec.directives)
     instances = [plant.GetModelInstanceByName(name) for name in spec.instances]
     if not plant.HasModelInstanceNamed(target):

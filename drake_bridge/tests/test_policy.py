@@ -15,8 +15,9 @@ policy's gripper speed and acceleration limits; the standard episode leaves the 
 on table_b and writes loadable after-directives, PNG frames, the flipbook and the JSON;
 "inside" and "near" put it in and beside the bin; the degraded episode runs and moves its
 gripper faster; with a pose estimate 2 cm off, the carrying clearance takes the standard
-policy's block over the barrier while the degraded policy's hits it and is knocked away; fingers that never squeeze are reported as a drop; an out-of-reach target
-fails with a reason; unknown instances, predicates and policies are input errors.
+policy's block over the barrier while the degraded policy's hits it and is knocked away;
+fingers that never squeeze are reported as a drop; an out-of-reach target fails with a
+reason; unknown instances, predicates and policies are input errors.
 """
 
 import dataclasses as dc
