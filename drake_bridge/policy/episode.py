@@ -331,7 +331,8 @@ class Episode:
                 if q_pre is None or not a.checker.CheckConfigCollisionFree(q_pre):
                     continue
                 q_grasp = self.ik(a, g.X_WG, q_pre, DESCEND_PADDING_M)
-                if q_grasp is None or not self._descend_free(q_pre, q_grasp):
+                if q_grasp is None or not self._free_with_padding(a, DESCEND_PADDING_M,
+                                                                     [q_pre, q_grasp]):
                     continue
                 X_GO = g.X_WG.inverse().multiply(self.X_WO0)
                 q_held = self.to_model(c, a, q_grasp, fingers=g.width / 2, X_GO=X_GO)
@@ -356,37 +357,24 @@ class Episode:
                 continue
             if c.checker.CheckConfigCollisionFree(q_lift):
                 return [q_lift]
-            if not self._free_with_scene_padding(c, [q_lift]):
+            scene_padding = self.config.env_padding_m
+            if not self._free_with_padding(c, scene_padding, [q_lift]):
                 continue
             X_up = RigidTransform([0.0, 0.0, dz]).multiply(X_WG)
             q_back = self.ik(c, X_up.multiply(back), q_lift, self.config.env_padding_m)
             if (q_back is not None and c.checker.CheckConfigCollisionFree(q_back)
-                    and self._free_with_scene_padding(c, [q_lift, q_back])):
+                    and self._free_with_padding(c, scene_padding, [q_lift, q_back])):
                 return [q_lift, q_back]
         return None
 
-    def _free_with_scene_padding(self, model, path):
-        """Whether the configuration (or the straight edge) `path` is collision-free with the
-        scene padding on every robot body (no carrying clearance)."""
-        checker = model.checker
-        checker.SetPaddingAllRobotEnvironmentPairs(self.config.env_padding_m)
-        try:
+    @staticmethod
+    def _free_with_padding(model, padding_m, path):
+        """Whether the configuration (or the straight edge) `path` of `model` is
+        collision-free with `padding_m` on every robot body."""
+        with model.padding(padding_m) as checker:
             if len(path) == 1:
                 return checker.CheckConfigCollisionFree(path[0])
             return checker.CheckEdgeCollisionFree(path[0], path[1])
-        finally:
-            if self.config.carry_padding_m is not None:
-                for body in model.gripper_bodies + [model.target_body]:
-                    checker.SetPaddingOneRobotBodyAllEnvironmentPairs(
-                        body.index(), self.config.carry_padding_m)
-
-    def _descend_free(self, q_pre, q_grasp):
-        checker = self.approach.checker
-        checker.SetPaddingAllRobotEnvironmentPairs(DESCEND_PADDING_M)
-        try:
-            return checker.CheckEdgeCollisionFree(q_pre, q_grasp)
-        finally:
-            checker.SetPaddingAllRobotEnvironmentPairs(self.config.env_padding_m)
 
     def solve_place(self, base, pick, positions):
         """(X_WO, q_preplace, q_place) for the first workable position from base, or None."""

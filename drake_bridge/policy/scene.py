@@ -20,6 +20,7 @@ Plants:
   comes near, SceneSpec.subset), the free target, the robot.
 """
 
+import contextlib
 import copy
 import dataclasses as dc
 import json
@@ -302,10 +303,9 @@ class PlanningModel:
             for body in hand:
                 self.checker.SetCollisionFilteredBetween(body.index(),
                                                          self.target_body.index(), True)
-            if config.carry_padding_m is not None:
-                for body in self.gripper_bodies + [self.target_body]:
-                    self.checker.SetPaddingOneRobotBodyAllEnvironmentPairs(
-                        body.index(), config.carry_padding_m)
+        self._paddings = (config.env_padding_m,
+                          config.carry_padding_m if mode == "held" else None)
+        self._set_own_paddings()
         self.context = self.diagram.CreateDefaultContext()
         self.plant_context = plant.GetMyMutableContextFromRoot(self.context)
         self.index = {}
@@ -314,6 +314,23 @@ class PlanningModel:
         self.held_start = (plant.GetJointByName(HELD_JOINT).position_start()
                            if mode == "held" else None)
         self.grasp_frame = plant.GetFrameByName("grasp_frame", self.robot)
+
+    def _set_own_paddings(self):
+        env, carry = self._paddings
+        self.checker.SetPaddingAllRobotEnvironmentPairs(env)
+        if carry is not None:
+            for body in self.gripper_bodies + [self.target_body]:
+                self.checker.SetPaddingOneRobotBodyAllEnvironmentPairs(body.index(), carry)
+
+    @contextlib.contextmanager
+    def padding(self, padding_m):
+        """The checker with `padding_m` between every robot body and the scene inside the
+        block (a move that must pass close by design); the model's own paddings after it."""
+        self.checker.SetPaddingAllRobotEnvironmentPairs(padding_m)
+        try:
+            yield self.checker
+        finally:
+            self._set_own_paddings()
 
     def indices(self, names):
         """Positions of the named robot joints in q (HELD_JOINT names its 7 positions)."""
