@@ -6,7 +6,12 @@ For each task it runs `scenesmith robot-eval "<task>" --scenes N --policy standa
 --out OUT/<task id>` and reads that run's `results.json`: per policy the episodes, successes and
 the Wilson interval, the outcomes that were not a success (`placed_wrong` or the policy's
 failure reason: no_base_pose, no_grasp, ik, planning, dropped, timeout; `error` for a bridge
-error) and the mean wall seconds of an episode. A task the binary refuses (exit status and its
+error), the episodes whose carried object hit something, and the mean wall seconds of an
+episode. Every judged state (each bound scene's initial state, each executed episode's final
+state) is also checked by `robot_state_check.py`, a geometric check written apart from the
+built-in evaluator: the summary says in how many states the two agree and in how many initial
+states the check finds the goal already holding (cached in OUT/<task id>/independent.json).
+A task the binary refuses (exit status and its
 last stderr line) is a row of its own, not a crash. Resumable: robot-eval keeps the checked
 scenes it already generated under OUT/<task id>/scenes, and a task whose results.json exists is
 read, not rerun, unless --rerun.
@@ -26,6 +31,7 @@ import sys
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO, "scripts"))
 
 #: The paper's four tasks (id -> text), in the paper's order.
 TASKS = {
@@ -73,11 +79,55 @@ def run_task(binary, text, out_dir, scenes, frames, log):
         return proc.wait(), last
 
 
-def summarise(results):
+def independent_states(results, cache_path):
+    """Each judged state with the built-in verdict and the independent check's:
+    [{"state": "initial"|"final", "scene", "policy", "builtin", "independent", "evidence"}];
+    read from `cache_path` when it was written for the same states."""
+    predicate = results["task"]["predicate"]
+    dirs = {s["id"]: s["dir"] for s in results.get("scenes", [])}
+    todo = []
+    for b in results.get("bindings", []):
+        if b.get("target"):
+            todo.append(("initial", b["scene"], None, b["target"], b["reference"],
+                         "scene.dmd.yaml", False))
+    for e in results.get("episodes", []):
+        if e.get("outcome") in ("success", "placed_wrong"):
+            builtin = e.get("builtin_holds")
+            if builtin is None:
+                builtin = e["outcome"] == "success"
+            todo.append(("final", e["scene"], e["policy"], e["target"], e["reference"],
+                         os.path.join(e["dir"], f"after_{e['policy']}.dmd.yaml"), builtin))
+    keys = [list(t[:3]) for t in todo]
+    if os.path.exists(cache_path):
+        with open(cache_path) as f:
+            cached = json.load(f)
+        if [[c["state"], c["scene"], c["policy"]] for c in cached] == keys:
+            return cached
+    from robot_state_check import check
+    out = []
+    for state, scene, policy, target, reference, directives, builtin in todo:
+        try:
+            holds, evidence = check(dirs[scene], directives, predicate, target, reference)
+        except Exception as e:  # a state that does not load is a disagreement, with why
+            holds, evidence = None, {"error": str(e)}
+        out.append({"state": state, "scene": scene, "policy": policy, "builtin": builtin,
+                    "independent": holds, "evidence": evidence})
+    with open(cache_path, "w") as f:
+        json.dump(out, f, indent=1)
+    return out
+
+
+def summarise(results, checked=None):
     """Per policy: episodes, successes, interval, failure counts, mean seconds; from a parsed
     results.json (RobotEvalResults in src/task/robot_eval.rs)."""
     usable = sum(1 for b in results.get("bindings", []) if b.get("target"))
     out = {"scenes": len(results.get("scenes", [])), "bound": usable, "policies": {}}
+    if checked is not None:
+        out["states_checked"] = len(checked)
+        out["states_agreeing"] = sum(1 for c in checked if c["independent"] == c["builtin"])
+        out["initial_holding"] = sum(1 for c in checked
+                                     if c["state"] == "initial" and c["independent"])
+        out["disagreements"] = [c for c in checked if c["independent"] != c["builtin"]]
     for policy in POLICIES:
         rows = [e for e in results.get("episodes", []) if e.get("policy") == policy]
         k = sum(1 for e in rows if e.get("outcome") == "success")
@@ -134,6 +184,23 @@ def table(rows):
     return "\n".join("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in lines)
 
 
+def agreement(rows):
+    """Lines: the built-in evaluator against the independent check, per task and in all."""
+    lines, n, k, held = [], 0, 0, 0
+    for task_id, s in rows:
+        if "states_checked" not in s:
+            continue
+        n, k, held = n + s["states_checked"], k + s["states_agreeing"], held + s[
+            "initial_holding"]
+        for c in s["disagreements"]:
+            lines.append(f"  {task_id} {c['scene']} {c['state']} {c['policy'] or ''}: built-in "
+                         f"{c['builtin']}, independent {c['independent']} {c['evidence']}")
+    head = (f"built-in evaluator vs independent geometric check: {k}/{n} states agree"
+            + (f" ({100 * k / n:.1f} %)" if n else "")
+            + f"; initial states whose goal already holds (independent check): {held}")
+    return "\n".join([head] + lines)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--out", required=True, help="output directory (one subdirectory a task)")
@@ -166,11 +233,15 @@ def main(argv=None):
                 rows.append((task_id, {"error": f"exit {status}: {last}"}))
                 continue
         with open(results_path) as f:
-            rows.append((task_id, summarise(json.load(f))))
+            results = json.load(f)
+        checked = independent_states(results, os.path.join(out_dir, "independent.json"))
+        rows.append((task_id, summarise(results, checked)))
     if args.json:
         print(json.dumps({k: v for k, v in rows}, indent=1))
     else:
         print(table(rows))
+        print()
+        print(agreement(rows))
 
 
 if __name__ == "__main__":

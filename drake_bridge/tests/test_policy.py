@@ -417,10 +417,38 @@ def test_standard_episode_leaves_the_block_resting_on_table_b(standard_run, scen
     assert json.dumps(dc.asdict(result))  # JSON-serialisable as it stands
 
 
+def _state_check():
+    """scripts/robot_state_check.py's `check`."""
+    import sys
+    sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "scripts"))
+    from robot_state_check import check
+    return check
+
+
+def test_the_benchmarks_independent_state_check_reads_the_states_of_an_episode(
+        standard_run, scene_dir):
+    """scripts/robot_state_check.py (the check bench_robot_eval.py holds the evaluator
+    against) on the start and the end of the standard episode."""
+    check = _state_check()
+    result, _ = standard_run
+    after = result.files["after_directives"]
+    assert check(scene_dir, "scene.dmd.yaml", "on", "block_0", "table_a")[0]
+    assert not check(scene_dir, "scene.dmd.yaml", "on", "block_0", "table_b")[0]
+    assert not check(scene_dir, "scene.dmd.yaml", "near", "block_0", "table_b")[0]
+    holds, evidence = check(scene_dir, after, "on", "block_0", "table_b")
+    assert holds and evidence["below"] == ["table_b"], evidence
+    assert not check(scene_dir, after, "on", "block_0", "table_a")[0]
+    assert not check(scene_dir, after, "inside", "block_0", "table_b")[0]  # no walls around
+
+
 def test_inside_puts_the_block_on_the_bin_floor(bin_scene_dir, tmp_path):
     result = run_episode(bin_scene_dir, PickPlaceTask("inside", "block_0", "bin_0"),
                          "standard", str(tmp_path), seed=0, frames=False)
     assert result.success, (result.failure_reason, result.message)
+    check = _state_check()
+    holds, evidence = check(bin_scene_dir, result.files["after_directives"], "inside",
+                            "block_0", "bin_0")
+    assert holds and evidence["walls"] == 4, evidence
     x, y, z = result.final_poses["block_0"].xyz
     half = BIN_INNER_M / 2 - BLOCK_SIZE_M[0] / 2
     assert abs(x - BIN_XY[0]) <= half and abs(y - BIN_XY[1]) <= half, (x, y)
