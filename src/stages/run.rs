@@ -305,24 +305,7 @@ fn split_plans(
         if hosts.is_empty() {
             continue;
         }
-        let n = hosts.len() as u32;
-        for (i, (id, cat)) in hosts.iter().enumerate() {
-            // Even split; the remainders go round the hosts (one lamp, one book and one
-            // clock on two nightstands: two on one, one on the other).
-            let mut turn = 0u32;
-            let items: Vec<Want> = group
-                .items
-                .iter()
-                .map(|w| {
-                    let extra = (i as u32 + n - turn % n) % n < w.count % n;
-                    turn += w.count % n;
-                    Want {
-                        count: w.count / n + u32::from(extra),
-                        ..w.clone()
-                    }
-                })
-                .filter(|w| w.count > 0)
-                .collect();
+        for ((id, cat), items) in hosts.iter().zip(shares_per_host(&group.items, hosts.len())) {
             let items = match scene
                 .scene
                 .object(id)
@@ -351,6 +334,64 @@ fn split_plans(
         }
     }
     per.into_iter().collect()
+}
+
+/// `items` split over `n` hosts: evenly, the remainders going round the hosts (one lamp, one
+/// book and one clock on two nightstands: two on one, one on the other); an item that goes
+/// inside a container of the same group follows the containers (the fruit goes to the table
+/// that got the fruit bowl), shared among their hosts in proportion.
+fn shares_per_host(items: &[Want], n: usize) -> Vec<Vec<Want>> {
+    let n32 = n as u32;
+    let mut turn = 0u32;
+    let mut counts: Vec<Vec<u32>> = vec![Vec::with_capacity(items.len()); n];
+    for w in items {
+        for (i, host) in counts.iter_mut().enumerate() {
+            let extra = (i as u32 + n32 - turn % n32) % n32 < w.count % n32;
+            host.push(w.count / n32 + u32::from(extra));
+        }
+        turn += w.count % n32;
+    }
+    for (k, w) in items.iter().enumerate() {
+        let Arrangement::Inside { parent } = &w.arrangement else {
+            continue;
+        };
+        let Some(c) = items.iter().position(|x| &x.noun == parent) else {
+            continue;
+        };
+        let containers: Vec<u32> = counts.iter().map(|host| host[c]).collect();
+        let total: u32 = containers.iter().sum();
+        if total == 0 {
+            continue;
+        }
+        // Largest remainders: each host's share of the containers, in whole items.
+        let mut given = 0u32;
+        for (host, held) in counts.iter_mut().zip(&containers) {
+            host[k] = w.count * held / total;
+            given += host[k];
+        }
+        for (host, _) in counts
+            .iter_mut()
+            .zip(&containers)
+            .filter(|(_, held)| **held > 0)
+        {
+            if given == w.count {
+                break;
+            }
+            host[k] += 1;
+            given += 1;
+        }
+    }
+    counts
+        .into_iter()
+        .map(|host| {
+            items
+                .iter()
+                .zip(host)
+                .filter(|(_, count)| *count > 0)
+                .map(|(w, count)| Want { count, ..w.clone() })
+                .collect()
+        })
+        .collect()
 }
 
 /// `groups` with each "anywhere" item that goes inside a container ("a fruit bowl with a
@@ -672,5 +713,34 @@ mod tests {
         // A container nobody plans: the item stays where it was.
         let lone = contents_with_their_containers(&[group("any", vec![want("fruit", inside)])]);
         assert_eq!(nouns(&lone[0]), ["fruit"]);
+    }
+
+    #[test]
+    fn split_over_two_tables_the_fruit_goes_to_the_table_that_gets_the_bowl() {
+        let inside = Arrangement::Inside {
+            parent: "fruit bowl".to_string(),
+        };
+        let mut fruit = want("fruit", inside);
+        fruit.count = 3;
+        let items = vec![
+            want("plate", Arrangement::Free),
+            want("fruit bowl", Arrangement::Free),
+            fruit,
+        ];
+        let shares = shares_per_host(&items, 2);
+        let held =
+            |host: &[Want], noun: &str| host.iter().find(|w| w.noun == noun).map_or(0, |w| w.count);
+        // One plate and one bowl go round the two tables; the fruit follows the bowl.
+        assert_eq!(held(&shares[0], "plate") + held(&shares[1], "plate"), 1);
+        let bowl_host = usize::from(held(&shares[1], "fruit bowl") == 1);
+        assert_eq!(held(&shares[bowl_host], "fruit bowl"), 1);
+        assert_eq!(held(&shares[bowl_host], "fruit"), 3);
+        assert_eq!(held(&shares[1 - bowl_host], "fruit"), 0);
+        // Two bowls on two tables: the fruit is shared, every one placed.
+        let mut two = items.clone();
+        two[1].count = 2;
+        let shares = shares_per_host(&two, 2);
+        assert_eq!(held(&shares[0], "fruit") + held(&shares[1], "fruit"), 3);
+        assert!(held(&shares[0], "fruit") >= 1 && held(&shares[1], "fruit") >= 1);
     }
 }
