@@ -132,6 +132,7 @@ class Rollout:
                 break
             t = min(end, t + CHECK_DT_S)
             simulator.AdvanceTo(t)
+            # Contacts from the grasp's end (the window opens 0.2 s after it) to the release.
             if carry_window is not None and carry_window[0] - 0.2 <= t <= carry_window[1]:
                 last = self._touching(plant_context)
                 first = last if first is None else first
