@@ -188,7 +188,7 @@ def _frame(y_G, z_G, centre):
 
 
 def sample_grasps(target_cloud, env_cloud, boxes, p_com_W, rng, max_grasps=20,
-                  max_seeds=600, standoff_m=None):
+                  max_seeds=2500, standoff_m=None):
     """Up to `max_grasps` collision-free antipodal grasps from at most `max_seeds` seed points
     of the target cloud (a Cloud, world frame) drawn with `rng`: the best of each approach
     tilt in turn (straight down, 30, 60, 90 degrees from it; the tilts in the order of their

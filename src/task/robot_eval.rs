@@ -38,7 +38,8 @@ pub struct RobotEvalOptions {
     pub scenes: SceneBuildOptions,
     /// Render each episode's frames and flipbook.
     pub frames: bool,
-    /// Seed of the episodes.
+    /// Seed of the episodes, added to each scene's seed (both policies of a scene get the
+    /// same).
     pub seed: u64,
 }
 
@@ -288,7 +289,9 @@ pub fn robot_eval(
                 reference: r.clone(),
                 policy,
                 out_dir: out.join("episodes").join(&b.scene).join(policy.name()),
-                seed: opts.seed,
+                // Both policies of a scene share it; the scenes differ (their pose-estimate
+                // errors, the planners' random choices).
+                seed: opts.seed.wrapping_add(scene.seed),
                 frames: opts.frames,
             };
             planned.push((scene, args));
