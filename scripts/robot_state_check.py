@@ -6,11 +6,11 @@ The built-in evaluator compares boxes and footprints; this check probes the scen
 (Drake's signed distance to a point, on the state loaded with Drake's default plant from the
 directives as written) and knows nothing of the evaluator's code:
 
-- below(p): the first scene instance met going down from p in 2 mm steps, at most 3 cm.
+- below(t): the first other scene instance met going down from t's centre of mass in 2 mm
+  steps, at most 3 cm under the bottom of t's box.
 - on(t, r): t's collision geometry within 5 mm of r's (signed distance, the contact the task
-  statement's threshold allows), and below(t's lowest point under its centre of mass) is r,
-  or is something that is itself on r (one level: a fruit on a plate on the table is on the
-  table).
+  statement's threshold allows), and below(t) is r, or is something that is itself on r (one
+  level: a fruit on a plate on the table is on the table).
 - inside(t, r): below(...) is r or something inside r, and at the height of t's centre of
   mass, probes along +x, -x, +y and -y (5 mm steps, within r's bounding box) meet r in at least
   three of the four directions: r's walls stand around t.
@@ -111,12 +111,15 @@ class State:
         return out
 
     def below(self, instance):
-        """The first instances met going down from the instance's lowest point under its
-        centre of mass, and the depth (m) at which they were met; (set(), None) when none."""
+        """The first other instances met going down from the instance's centre of mass, to
+        DOWN_REACH_M under the bottom of its box, and the depth (m) under the centre of mass at
+        which they were met; (set(), None) when none. (From the centre of mass, not from the
+        box's bottom: the box around a turned object's oriented boxes reaches below it.)"""
         c = self.com(instance)
         lo, _ = self.box(instance)
-        for k in range(int(round(DOWN_REACH_M / DOWN_STEP_M)) + 1):
-            p = np.array([c[0], c[1], lo[2] - k * DOWN_STEP_M])
+        steps = int(np.ceil((c[2] - lo[2] + DOWN_REACH_M) / DOWN_STEP_M))
+        for k in range(steps + 1):
+            p = np.array([c[0], c[1], c[2] - k * DOWN_STEP_M])
             found = self.instances_at(p, {instance})
             if found:
                 return found, k * DOWN_STEP_M
@@ -157,13 +160,13 @@ def _on(state, target, reference, depth=1):
     under, gap = state.below(target)
     d = state.distance(target, reference)
     if reference in under and d <= CONTACT_M:
-        return True, {"below": sorted(under), "gap_m": gap, "distance_m": d}
+        return True, {"below": sorted(under), "depth_m": gap, "distance_m": d}
     if depth > 0:
         for other in sorted(under - {reference}):
             holds, _ = _on(state, other, reference, depth - 1)
             if holds:
-                return True, {"below": sorted(under), "gap_m": gap, "via": other}
-    return False, {"below": sorted(under), "gap_m": gap, "distance_m": d}
+                return True, {"below": sorted(under), "depth_m": gap, "via": other}
+    return False, {"below": sorted(under), "depth_m": gap, "distance_m": d}
 
 
 def _inside(state, target, reference):
@@ -171,7 +174,7 @@ def _inside(state, target, reference):
     walls = state.walls_around(target, reference)
     base = reference in under or any(
         state.walls_around(o, reference) >= WALLS_NEEDED for o in under - {reference})
-    return base and walls >= WALLS_NEEDED, {"below": sorted(under), "gap_m": gap,
+    return base and walls >= WALLS_NEEDED, {"below": sorted(under), "depth_m": gap,
                                            "walls": walls}
 
 
