@@ -82,7 +82,8 @@ def run_task(binary, text, out_dir, scenes, frames, log):
 def independent_states(results, cache_path):
     """Each judged state with the built-in verdict and the independent check's:
     [{"state": "initial"|"final", "scene", "policy", "builtin", "independent", "evidence"}];
-    read from `cache_path` when it was written for the same states."""
+    read from `cache_path` when it was written for the same states by the same version of
+    the check."""
     predicate = results["task"]["predicate"]
     dirs = {s["id"]: s["dir"] for s in results.get("scenes", [])}
     todo = []
@@ -97,13 +98,14 @@ def independent_states(results, cache_path):
                 builtin = e["outcome"] == "success"
             todo.append(("final", e["scene"], e["policy"], e["target"], e["reference"],
                          os.path.join(e["dir"], f"after_{e['policy']}.dmd.yaml"), builtin))
+    from robot_state_check import VERSION, check
     keys = [list(t[:3]) for t in todo]
     if os.path.exists(cache_path):
         with open(cache_path) as f:
             cached = json.load(f)
-        if [[c["state"], c["scene"], c["policy"]] for c in cached] == keys:
-            return cached
-    from robot_state_check import check
+        if isinstance(cached, dict) and cached.get("version") == VERSION and [
+                [c["state"], c["scene"], c["policy"]] for c in cached["states"]] == keys:
+            return cached["states"]
     out = []
     for state, scene, policy, target, reference, directives, builtin in todo:
         try:
@@ -113,7 +115,7 @@ def independent_states(results, cache_path):
         out.append({"state": state, "scene": scene, "policy": policy, "builtin": builtin,
                     "independent": holds, "evidence": evidence})
     with open(cache_path, "w") as f:
-        json.dump(out, f, indent=1)
+        json.dump({"version": VERSION, "states": out}, f, indent=1)
     return out
 
 
