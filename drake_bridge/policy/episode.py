@@ -59,6 +59,7 @@ from drake_bridge.policy.scene import (
     HELD_JOINT,
     X_GO_PARKED,
     PlanningModel,
+    StaticScene,
     home_positions,
     load_scene_spec,
     target_default_pose,
@@ -165,9 +166,11 @@ class Episode:
             self.planning_spec = self.spec.subset(_planning_scope(self.spec, task))
             # The policy's belief: the target where its pose estimate puts it.
             self.X_WO_true = target_default_pose(self.spec, task.target)
+            self.static = StaticScene(self.planning_spec, task.target)
             self.approach = PlanningModel(self.planning_spec, task.target, "world", config,
-                                          self.pose_error.estimate(self.X_WO_true))
-            self.carry = PlanningModel(self.planning_spec, task.target, "held", config)
+                                          self.pose_error.estimate(self.X_WO_true), self.static)
+            self.carry = PlanningModel(self.planning_spec, task.target, "held", config,
+                                       static=self.static)
         self.home = home_positions()
         self.welded = self.approach.welded
         self.base_poses = []
@@ -233,9 +236,7 @@ class Episode:
             self.target_cloud = target_surfaces.sample(0.004, self.rng, drop_internal=True)
             if len(self.target_cloud) == 0:
                 raise BadTask(f"target {self.task.target!r} has no collision geometry")
-            ref_instance = a.plant.GetModelInstanceByName(self.task.reference)
-            ref_ids = [g for b in a.plant.GetBodyIndices(ref_instance)
-                       for g in a.plant.GetCollisionGeometriesForBody(a.plant.get_body(b))]
+            ref_ids = a.geometries_of(self.task.reference)
             self.reference_cloud = GeometrySurfaces(self.query, ref_ids).sample(
                 0.01, self.rng, drop_internal=True)
             if len(self.reference_cloud) == 0:
@@ -259,11 +260,10 @@ class Episode:
         if not np.any(under):
             return None
         pieces = np.unique(cloud.piece[under])
-        plant, inspector = self.approach.plant, self.query.inspector()
-        bodies = {plant.GetBodyFromFrameId(inspector.GetFrameId(self.env.ids[k])).index()
-                  for k in pieces}
+        owner = self.approach.owner
+        bodies = {owner(self.env.ids[k]) for k in pieces}
         boxes = [self.env.bounds(k) for k, gid in enumerate(self.env.ids)
-                 if plant.GetBodyFromFrameId(inspector.GetFrameId(gid)).index() in bodies]
+                 if owner(gid) in bodies]
         boxes = [b for b in boxes if b is not None]
         lower = np.min([b[0] for b in boxes], axis=0)
         upper = np.max([b[1] for b in boxes], axis=0)
@@ -287,17 +287,16 @@ class Episode:
                                 f"{self.task.target}")
 
     def place_positions(self):
-        a = self.approach
         with self.clock.phase("perception"):
             radius = self.shape.radius()
             pred = self.task.predicate
             if pred == "on":
-                out = placement.on_positions(self.spec, self.task, a.plant, a.plant_context,
+                out = placement.on_positions(self.spec, self.task, self.static.body_pose,
                                              self.reference_cloud, radius,
                                              self.X_WO0.translation())
             elif pred == "inside":
-                out = placement.inside_positions(self.spec, self.task, a.plant,
-                                                 a.plant_context, self.reference_cloud, radius)
+                out = placement.inside_positions(self.spec, self.task, self.static.body_pose,
+                                                 self.reference_cloud, radius)
             else:
                 lo = self.reference_cloud.p.min(axis=0)
                 hi = self.reference_cloud.p.max(axis=0)
@@ -676,10 +675,14 @@ class Episode:
         boxes[:, 1] += inflate
         return boxes
 
+    def static_geometry(self, instances):
+        """The StaticScene pieces of `instances` (never the target's: the simulation holds it
+        where it truly is, free)."""
+        return [g for g in self.static.pieces if g.instance in instances]
+
     def instances_in(self, boxes):
         """Scene instances with collision geometry touching any of `boxes` (N x 2 x 3), and
         the target."""
-        plant, inspector = self.approach.plant, self.query.inspector()
         keep = {self.task.target}
         for k, gid in enumerate(self.env.ids):
             b = self.env.bounds(k)
@@ -688,8 +691,7 @@ class Episode:
             if not np.any(np.all(b[0] <= boxes[:, 1], axis=1) &
                           np.all(b[1] >= boxes[:, 0], axis=1)):
                 continue
-            body = plant.GetBodyFromFrameId(inspector.GetFrameId(gid))
-            keep.add(plant.GetModelInstanceName(body.model_instance()))
+            keep.add(self.approach.instance_of(gid))
         return keep
 
     def motion_info(self, table):
@@ -847,9 +849,8 @@ def _roll_out(episode, traj, marks):
     near (contact_region, instances_in); returns (outcome, key frame times, flipbook times,
     instances left out of the simulation)."""
     keep = episode.instances_in(episode.contact_region())
-    spec = episode.spec.subset(keep)
-    rollout = Rollout(spec, episode.task.target, episode.actuated,
-                      episode.approach.robot_values(episode.q_start))
+    rollout = Rollout(episode.spec, episode.task.target, episode.static_geometry(keep),
+                      episode.actuated, episode.approach.robot_values(episode.q_start))
     close_end, release_start = marks["close"][1], marks["release"][0]
     carry_name = "carry" if "carry" in marks else "unfold"
     end = traj.end_time() + episode.config.settle_after_s
@@ -867,7 +868,9 @@ def _write_frames(episode, outcome, key, flip, policy, out_dir, animation):
     """Key frames as PNG files and (when `animation`) the flipbook; returns role -> path."""
     files = {}
     focus = (episode.X_WO0.translation() + episode.X_WO_place.translation()) / 2
-    renderer = FrameRenderer(episode.carry, camera_pose(focus, episode.base_poses[0][:2],
+    # The planning models hold the scene's collision geometry only: frames need its visuals.
+    model = PlanningModel(episode.planning_spec, episode.task.target, "held", episode.config)
+    renderer = FrameRenderer(model, camera_pose(focus, episode.base_poses[0][:2],
                                                         _room_bounds(episode.spec)))
     records = outcome.records
 

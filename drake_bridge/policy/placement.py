@@ -139,20 +139,11 @@ def _json_surface(spec, reference, wanted):
     return None
 
 
-def _body_pose(plant, plant_context, instance, link):
-    model = plant.GetModelInstanceByName(instance)
-    if link is not None and plant.HasBodyNamed(link, model):
-        body = plant.GetBodyByName(link, model)
-    else:
-        body = plant.get_body(plant.GetBodyIndices(model)[0])
-    return plant.EvalBodyPoseInWorld(plant_context, body)
-
-
-def _surface_positions(plant, plant_context, reference, surface, radius, reference_cloud):
+def _surface_positions(body_pose, reference, surface, radius, reference_cloud):
     """A GRID_M grid over a scene.json surface of the reference inset by the object's footprint
     radius + 2 cm, centres first (a surface too small for that, such as a plate's flat well:
     its centre alone, when the reference itself is wider than the footprint)."""
-    X_WR = _body_pose(plant, plant_context, reference, surface.get("link"))
+    X_WR = body_pose(reference, surface.get("link"))
     half = np.array(surface["size"][:2]) / 2 - (radius + 0.02)
     if np.any(half < 0):
         extent = reference_cloud.p[:, :2].max(axis=0) - reference_cloud.p[:, :2].min(axis=0)
@@ -166,12 +157,12 @@ def _surface_positions(plant, plant_context, reference, surface, radius, referen
     return [PlacePosition(p, float(p[2])) for p in X_WR.multiply(local.T).T]
 
 
-def on_positions(spec, task, plant, plant_context, reference_cloud, radius, start_p_W):
-    """Place positions on the reference's top (see module doc), best first."""
+def on_positions(spec, task, body_pose, reference_cloud, radius, start_p_W):
+    """Place positions on the reference's top (see module doc), best first. `body_pose(instance,
+    link)`: a scene body's world pose (StaticScene.body_pose)."""
     surface = _json_surface(spec, task.reference, "top")
     if surface is not None:
-        out = _surface_positions(plant, plant_context, task.reference, surface, radius,
-                                 reference_cloud)
+        out = _surface_positions(body_pose, task.reference, surface, radius, reference_cloud)
     else:
         up = reference_cloud.n[:, 2] > UP_NORMAL_Z
         if not np.any(up):
@@ -188,13 +179,12 @@ def on_positions(spec, task, plant, plant_context, reference_cloud, radius, star
     return [c for c in out if np.linalg.norm(c.p_W[:2] - start_p_W[:2]) >= MIN_MOVE_M]
 
 
-def inside_positions(spec, task, plant, plant_context, reference_cloud, radius):
+def inside_positions(spec, task, body_pose, reference_cloud, radius):
     """Place positions inside the container (see module doc), best first, or []."""
     surface = (_json_surface(spec, task.reference, "inside")
                or _json_surface(spec, task.reference, "basin"))
     if surface is not None:
-        return _surface_positions(plant, plant_context, task.reference, surface, radius,
-                                  reference_cloud)
+        return _surface_positions(body_pose, task.reference, surface, radius, reference_cloud)
     P, n = reference_cloud.p, reference_cloud.n
     top_z = float(P[:, 2].max())
     centre = (P[:, :2].max(axis=0) + P[:, :2].min(axis=0)) / 2

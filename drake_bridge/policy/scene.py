@@ -35,7 +35,12 @@ from pydrake.geometry import CollisionFilterDeclaration, GeometrySet
 from pydrake.math import RigidTransform
 from pydrake.multibody.parsing import LoadModelDirectives, Parser
 from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
-from pydrake.multibody.tree import PrismaticJoint, QuaternionFloatingJoint, RevoluteJoint
+from pydrake.multibody.tree import (
+    BodyIndex,
+    PrismaticJoint,
+    QuaternionFloatingJoint,
+    RevoluteJoint,
+)
 from pydrake.planning import RobotDiagramBuilder, SceneGraphCollisionChecker
 from pydrake.systems.framework import DiagramBuilder
 
@@ -239,6 +244,71 @@ def add_scene(plant, parser, spec, target, target_mode, robot=None, X_WO_world=N
     return sorted(welded), target_body
 
 
+@dc.dataclass(frozen=True)
+class StaticGeometry:
+    """One collision geometry of a welded scene body: its model instance and body names, its
+    pose in the world X_WG, its shape and its proximity properties."""
+
+    instance: str
+    body: str
+    X_WG: object
+    shape: object
+    properties: object
+
+
+class StaticScene:
+    """The scene welded where the directives put it, the target left out, as data: the
+    collision geometry of every other body (`pieces`, StaticGeometry), each body's world pose
+    and the welded instances' names. Parsed once per episode; the planning models and the
+    simulation register its pieces on the world body instead of parsing the scene again as
+    welded bodies: Drake keeps only geometry on the world body in its static broadphase tree
+    and out of the per-query pose updates, while geometry of a body welded to the world is
+    handled as moving (a planning query or simulation step over a room of 777 such pieces
+    costs about twice the time; drake issue 24888 reports the same)."""
+
+    def __init__(self, spec, target):
+        builder = DiagramBuilder()
+        plant, scene_graph = AddMultibodyPlantSceneGraph(builder, time_step=0.0)
+        parser = Parser(plant)
+        configure_parser(parser, spec)
+        self.welded, target_body = add_scene(plant, parser, spec, target, "world")
+        plant.Finalize()
+        context = plant.CreateDefaultContext()
+        inspector = scene_graph.model_inspector()
+        self.pieces, self._poses, self._first_body = [], {}, {}
+        for index in range(plant.num_bodies()):
+            body = plant.get_body(BodyIndex(index))
+            if body.index() in (target_body.index(), plant.world_body().index()):
+                continue
+            instance = plant.GetModelInstanceName(body.model_instance())
+            X_WB = plant.EvalBodyPoseInWorld(context, body)
+            self._poses[(instance, body.name())] = X_WB
+            self._first_body.setdefault(instance, body.name())
+            for gid in plant.GetCollisionGeometriesForBody(body):
+                self.pieces.append(StaticGeometry(
+                    instance, body.name(), X_WB.multiply(inspector.GetPoseInFrame(gid)),
+                    inspector.GetShape(gid).Clone(), inspector.GetProximityProperties(gid)))
+
+    def body_pose(self, instance, body=None):
+        """X_WB of the named body of `instance` (its first body when `body` is None or not
+        one of its bodies)."""
+        if (instance, body) not in self._poses:
+            body = self._first_body[instance]
+        return self._poses[(instance, body)]
+
+
+def register_static(plant, pieces):
+    """Registers `pieces` (StaticGeometry) on the world body of `plant` (not finalized);
+    returns {geometry id: (instance name, body name)}."""
+    owner = {}
+    for k, g in enumerate(pieces):
+        gid = plant.RegisterCollisionGeometry(plant.world_body(), g.X_WG, g.shape,
+                                              f"{g.instance}::{g.body}::static_{k}",
+                                              g.properties)
+        owner[gid] = (g.instance, g.body)
+    return owner
+
+
 def target_default_pose(spec, target):
     """X_WO of the target as the directives place it (default_free_body_pose)."""
     add_model = spec.add_model(target)
@@ -268,15 +338,22 @@ class PlanningModel:
     with a carry padding, the gripper bodies and the held object get `config.carry_padding_m`
     instead."""
 
-    def __init__(self, spec, target, mode, config, X_WO_world=None):
+    def __init__(self, spec, target, mode, config, X_WO_world=None, static=None):
         assert mode in ("world", "held"), mode
         self.mode = mode
         builder = RobotDiagramBuilder(time_step=0.0)
         plant, parser = builder.plant(), builder.parser()
         configure_parser(parser, spec)
         (self.robot,) = parser.AddModels(url=ROBOT_URL)
-        self.welded, self.target_body = add_scene(plant, parser, spec, target, mode, self.robot,
-                                                  X_WO_world)
+        if static is None:
+            self.static_owner = {}
+            self.welded, self.target_body = add_scene(plant, parser, spec, target, mode,
+                                                      self.robot, X_WO_world)
+        else:
+            _, self.target_body = add_scene(plant, parser, spec.subset({target}), target, mode,
+                                            self.robot, X_WO_world)
+            self.welded = static.welded
+            self.static_owner = register_static(plant, static.pieces)
         plant.Finalize()
         expected = plant.num_positions(self.robot) + (7 if mode == "held" else 0)
         if plant.num_positions() != expected:
@@ -314,6 +391,26 @@ class PlanningModel:
         self.held_start = (plant.GetJointByName(HELD_JOINT).position_start()
                            if mode == "held" else None)
         self.grasp_frame = plant.GetFrameByName("grasp_frame", self.robot)
+
+    def owner(self, geometry_id):
+        """(model instance name, body name) of a collision geometry (for a StaticScene piece
+        on the world body: the scene body it belongs to)."""
+        if geometry_id in self.static_owner:
+            return self.static_owner[geometry_id]
+        inspector = self.diagram.scene_graph().model_inspector()
+        body = self.plant.GetBodyFromFrameId(inspector.GetFrameId(geometry_id))
+        return self.plant.GetModelInstanceName(body.model_instance()), body.name()
+
+    def instance_of(self, geometry_id):
+        return self.owner(geometry_id)[0]
+
+    def geometries_of(self, instance):
+        """The collision geometries of a welded scene instance."""
+        if self.static_owner:
+            return [g for g, (name, _) in self.static_owner.items() if name == instance]
+        model = self.plant.GetModelInstanceByName(instance)
+        return [g for b in self.plant.GetBodyIndices(model)
+                for g in self.plant.GetCollisionGeometriesForBody(self.plant.get_body(b))]
 
     def _set_own_paddings(self):
         env, carry = self._paddings
