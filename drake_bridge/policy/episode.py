@@ -166,7 +166,7 @@ class Episode:
             self.planning_spec = self.spec.subset(_planning_scope(self.spec, task))
             # The policy's belief: the target where its pose estimate puts it.
             self.X_WO_true = target_default_pose(self.spec, task.target)
-            self.static = StaticScene(self.planning_spec, task.target)
+            self.static = StaticScene(self.planning_spec, task.target, {task.reference})
             self.approach = PlanningModel(self.planning_spec, task.target, "world", config,
                                           self.pose_error.estimate(self.X_WO_true), self.static)
             self.carry = PlanningModel(self.planning_spec, task.target, "held", config,

@@ -31,10 +31,6 @@ fn is_seat_parent(category: &str) -> bool {
 #[derive(Debug, Default)]
 pub struct BuiltinFurnitureDesigner;
 
-fn ok(v: &Result<Value, crate::agents::ToolError>) -> bool {
-    v.is_ok()
-}
-
 /// Ids of the objects a placement result reports.
 fn placed_ids(v: &Value) -> Vec<String> {
     v["placed"]
@@ -55,6 +51,7 @@ impl BuiltinFurnitureDesigner {
         desc: &str,
         arrangement: &Arrangement,
         reverse: bool,
+        guard: bool,
     ) -> bool {
         let mut attempts: Vec<(&str, Value)> = Vec::new();
         match arrangement {
@@ -98,11 +95,256 @@ impl BuiltinFurnitureDesigner {
         attempts.push(("place_in_corner", json!({"description": desc})));
         attempts.push(("place_in_center", json!({"description": desc})));
         for (tool, args) in attempts {
-            if ok(&cx.call(state, Role::Designer, tool, args)) {
+            if Self::call_guarded(state, cx, tool, args, guard) {
                 return true;
             }
         }
         false
+    }
+
+    /// How many pieces the robot cannot reach from the door.
+    fn unreachable_count(state: &mut StageState, cx: &mut AgentCx<'_, StageState>) -> usize {
+        cx.call(state, Role::Designer, "check_reachability", json!({}))
+            .map(|v| v["unreachable"].as_array().map_or(0, Vec::len))
+            .unwrap_or(0)
+    }
+
+    /// Calls a placement tool; with `guard` (a room default, not a piece the prompt asked for)
+    /// a piece that cuts anything off from the door is taken back (a floor lamp and a plant
+    /// that box a nightstand in), and the call counts as failed.
+    fn call_guarded(
+        state: &mut StageState,
+        cx: &mut AgentCx<'_, StageState>,
+        tool: &str,
+        args: Value,
+        guard: bool,
+    ) -> bool {
+        let before = if guard {
+            Self::unreachable_count(state, cx)
+        } else {
+            0
+        };
+        let Ok(v) = cx.call(state, Role::Designer, tool, args) else {
+            return false;
+        };
+        if guard && Self::unreachable_count(state, cx) > before {
+            for id in placed_ids(&v) {
+                let _ = cx.call(state, Role::Designer, "remove_object", json!({"id": id}));
+            }
+            return false;
+        }
+        true
+    }
+
+    /// The plan's furniture in the order it is placed: the plan's order, except that a piece
+    /// placed relative to another piece of the plan comes right after that piece (the
+    /// nightstands after the bed, before the dresser can take the bed's sides), what the
+    /// prompt asked for before the room's defaults.
+    fn in_placing_order(wants: &[Want]) -> Vec<Want> {
+        let anchor = |w: &Want| {
+            w.arrangement.target().and_then(|t| {
+                (!Self::of_own_kind(w, t))
+                    .then(|| wants.iter().position(|o| o.noun == t))
+                    .flatten()
+            })
+        };
+        let mut order: Vec<usize> = Vec::new();
+        fn visit(i: usize, wants: &[Want], anchors: &[Option<usize>], order: &mut Vec<usize>) {
+            if order.contains(&i) {
+                return;
+            }
+            order.push(i);
+            let mut followers: Vec<usize> = (0..wants.len())
+                .filter(|&j| anchors[j] == Some(i))
+                .collect();
+            followers.sort_by_key(|&j| !wants[j].explicit);
+            for j in followers {
+                visit(j, wants, anchors, order);
+            }
+        }
+        let anchors: Vec<Option<usize>> = wants.iter().map(anchor).collect();
+        for i in 0..wants.len() {
+            if anchors[i].is_none() {
+                visit(i, wants, &anchors, &mut order);
+            }
+        }
+        for i in 0..wants.len() {
+            visit(i, wants, &anchors, &mut order); // left over: a cycle of relations
+        }
+        order.into_iter().map(|i| wants[i].clone()).collect()
+    }
+
+    /// Whether the plan puts pieces beside or flanking `want` (nightstands by a bed).
+    fn has_side_followers(want: &Want, wants: &[Want]) -> bool {
+        wants.iter().any(|w| match &w.arrangement {
+            Arrangement::Beside { target } | Arrangement::Flanking { target } => {
+                *target == want.noun
+            }
+            _ => false,
+        })
+    }
+
+    /// Places up to `need` pieces of `want` against a wall, as near its middle as is free,
+    /// leaving room at both sides for what goes beside them; returns how many it placed.
+    fn place_centred_on_a_wall(
+        state: &mut StageState,
+        cx: &mut AgentCx<'_, StageState>,
+        want: &Want,
+        need: u32,
+    ) -> u32 {
+        let walls: Vec<(String, f64)> = state
+            .room()
+            .map(|r| {
+                r.walls
+                    .iter()
+                    .map(|w| (w.id.clone(), w.length() / 2.0))
+                    .collect()
+            })
+            .unwrap_or_default();
+        let mut placed = 0;
+        'pieces: while placed < need {
+            for (wall, middle) in &walls {
+                let args =
+                    json!({"description": want.description, "wall": wall, "along_m": middle});
+                if Self::call_guarded(state, cx, "place_against_wall", args, !want.explicit) {
+                    placed += 1;
+                    continue 'pieces;
+                }
+            }
+            break;
+        }
+        placed
+    }
+
+    /// Whether `target` names the want's own kind ("two sofas facing each other").
+    fn of_own_kind(want: &Want, target: &str) -> bool {
+        want.noun == target || want.noun.ends_with(&format!(" {target}"))
+    }
+
+    /// Places up to `need` pieces of `want` where its arrangement relates them to other
+    /// pieces in the room (beside, flanking, in front of, behind, between, across from,
+    /// facing each other) with `place_relative` / `place_facing`; returns how many it placed.
+    /// What it cannot place that way is left to the caller's fallbacks.
+    fn place_related(
+        state: &mut StageState,
+        cx: &mut AgentCx<'_, StageState>,
+        want: &Want,
+        wants: &[Want],
+        need: u32,
+    ) -> u32 {
+        let desc = want.description.as_str();
+        // A room default must not cut anything off from the door (armchairs beside a coffee
+        // table that two sofas already face).
+        let call = |state: &mut StageState, cx: &mut AgentCx<'_, StageState>, tool, args| {
+            Self::call_guarded(state, cx, tool, args, !want.explicit)
+        };
+        let relative = |target: &str, relation: &str| json!({"description": desc, "target": target, "relation": relation});
+        let mut placed = 0;
+        match &want.arrangement {
+            Arrangement::Beside { target }
+            | Arrangement::Flanking { target }
+            | Arrangement::InFront { target }
+            | Arrangement::Behind { target } => {
+                let relation = match &want.arrangement {
+                    Arrangement::InFront { .. } => "in_front",
+                    Arrangement::Behind { .. } => "behind",
+                    _ => "beside",
+                };
+                let targets = Self::present(state, target);
+                'pieces: while placed < need {
+                    for t in &targets {
+                        if call(state, cx, "place_relative", relative(t, relation)) {
+                            placed += 1;
+                            continue 'pieces;
+                        }
+                    }
+                    break;
+                }
+            }
+            Arrangement::Between { targets } => {
+                let mut ends: Vec<String> = Vec::new();
+                for t in targets {
+                    let present = Self::present(state, t);
+                    let take = if targets.len() == 1 { 2 } else { 1 };
+                    let fresh: Vec<String> = present
+                        .into_iter()
+                        .filter(|id| !ends.contains(id))
+                        .take(take)
+                        .collect();
+                    ends.extend(fresh);
+                }
+                if let [a, b, ..] = ends.as_slice() {
+                    let mut args = relative(a, "between");
+                    args["second"] = json!(b);
+                    if call(state, cx, "place_relative", args) {
+                        placed += 1;
+                    }
+                }
+            }
+            Arrangement::AcrossFrom { target } if target != "entrance" => {
+                if let Some(t) = Self::present(state, target).first() {
+                    let args = json!({"description": desc, "target": t, "distance_m": 1.2});
+                    if call(state, cx, "place_facing", args) {
+                        placed += 1;
+                    }
+                }
+            }
+            Arrangement::Facing { target } if Self::of_own_kind(want, target) => {
+                // The first where it fits, each other one facing the first across a gap that
+                // leaves room for what the plan puts between them.
+                // The first goes against each wall in turn until the other fits facing it.
+                let gap = Self::gap_for_between(want, wants);
+                let facing =
+                    |first: &str| json!({"description": desc, "target": first, "distance_m": gap});
+                let mine = Self::present_for(state, want, wants);
+                if let Some(first) = mine.first().cloned() {
+                    while placed < need && call(state, cx, "place_facing", facing(&first)) {
+                        placed += 1;
+                    }
+                    return placed;
+                }
+                for wall in ["north", "east", "south", "west"] {
+                    let args = json!({"description": desc, "wall": wall});
+                    let Ok(v) = cx.call(state, Role::Designer, "place_against_wall", args) else {
+                        continue;
+                    };
+                    let Some(first) = placed_ids(&v).into_iter().next() else {
+                        continue;
+                    };
+                    if call(state, cx, "place_facing", facing(&first)) {
+                        placed = 2;
+                        while placed < need && call(state, cx, "place_facing", facing(&first)) {
+                            placed += 1;
+                        }
+                        return placed.min(need);
+                    }
+                    let _ = cx.call(state, Role::Designer, "remove_object", json!({"id": first}));
+                }
+            }
+            _ => {}
+        }
+        placed
+    }
+
+    /// The gap (m) between two pieces of `want` that face each other: the depth of a piece
+    /// the plan puts between them plus a 0.45 m passage on each side, else 0.9 m.
+    fn gap_for_between(want: &Want, wants: &[Want]) -> f64 {
+        wants
+            .iter()
+            .filter(|w| match &w.arrangement {
+                Arrangement::Between { targets } => {
+                    targets.iter().any(|t| Self::of_own_kind(want, t))
+                }
+                _ => false,
+            })
+            .filter_map(|w| {
+                let category = crate::assets::router::parse::main_categories(&w.noun)
+                    .into_iter()
+                    .next()?;
+                crate::assets::procedural::prior(category).map(|p| p.typical[1])
+            })
+            .map(|depth| depth + 0.9)
+            .fold(0.9, f64::max)
     }
 
     fn present(state: &StageState, noun: &str) -> Vec<String> {
@@ -136,12 +378,16 @@ impl BuiltinFurnitureDesigner {
     }
 
     fn build_plan(state: &mut StageState, cx: &mut AgentCx<'_, StageState>, reverse: bool) {
-        let wants = state.plan.furniture.clone();
+        let wants = Self::in_placing_order(&state.plan.furniture);
         for want in &wants {
             let have = Self::present_for(state, want, &wants).len() as u32;
             let mut need = want.count.saturating_sub(have);
             if need == 0 {
                 continue;
+            }
+            need -= Self::place_related(state, cx, want, &wants, need);
+            if need > 0 && Self::has_side_followers(want, &wants) {
+                need -= Self::place_centred_on_a_wall(state, cx, want, need);
             }
             if let Arrangement::Around { parent } = &want.arrangement {
                 let parents = Self::present(state, parent);
@@ -164,6 +410,7 @@ impl BuiltinFurnitureDesigner {
                 }
             }
             if let Arrangement::Facing { target } = &want.arrangement
+                && !Self::of_own_kind(want, target)
                 && let Some(t) = Self::present(state, target).first().cloned()
                 && need > 0
                 && cx
@@ -178,7 +425,14 @@ impl BuiltinFurnitureDesigner {
                 need -= 1;
             }
             for _ in 0..need {
-                if !Self::place_one(state, cx, &want.description, &want.arrangement, reverse) {
+                if !Self::place_one(
+                    state,
+                    cx,
+                    &want.description,
+                    &want.arrangement,
+                    reverse,
+                    !want.explicit,
+                ) {
                     break;
                 }
             }
@@ -231,7 +485,7 @@ impl BuiltinFurnitureDesigner {
             if is_explicit {
                 // Re-place a requested piece somewhere else; drop a default one.
                 let arrangement = Arrangement::AgainstWall;
-                Self::place_one(state, cx, &obj.category, &arrangement, !reverse);
+                Self::place_one(state, cx, &obj.category, &arrangement, !reverse, false);
             }
         }
     }

@@ -135,6 +135,40 @@ pub struct FacingArgs {
     pub distance_m: Option<f64>,
 }
 
+/// Where a piece goes relative to another object (`place_relative`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Relation {
+    /// At one side of the target (its right first, then its left), the same heading, the
+    /// backs in line: a nightstand beside a bed, a lamp next to a sofa.
+    Beside,
+    /// In front of the target, facing it: a coffee table in front of a sofa.
+    InFront,
+    /// At the target's back, the same heading: a console table behind a sofa.
+    Behind,
+    /// Midway between the target and `second`: facing one of them when they face each other
+    /// (a coffee table between two sofas), else with their heading (a nightstand between two
+    /// beds).
+    Between,
+}
+
+/// Place a piece relative to one object (or between two).
+#[derive(Debug, Deserialize, JsonSchema)]
+pub struct RelativeArgs {
+    /// What to place, e.g. "nightstand".
+    pub description: String,
+    /// Id of the object it is placed relative to.
+    pub target: String,
+    /// beside, in_front, behind or between.
+    pub relation: Relation,
+    /// Id of the second object, for "between".
+    #[serde(default)]
+    pub second: Option<String>,
+    /// Gap between the footprints, metres (default: beside 0.05, in front 0.4, behind 0.1).
+    #[serde(default)]
+    pub gap_m: Option<f64>,
+}
+
 /// What a placement tool did.
 #[derive(Debug, Serialize, JsonSchema, Default)]
 pub struct PlaceResult {
@@ -540,14 +574,29 @@ fn place_facing(state: &mut StageState, a: FacingArgs) -> Result<PlaceResult, To
     let tfp = Footprint::of(&trec, &target.world_from_object);
     let gap = a.distance_m.unwrap_or(0.6).clamp(0.1, 4.0);
     let mut tried = Vec::new();
-    // Try in front of the target first, then its other sides.
-    for k in 0..4 {
+    // Try in front of the target first (straight across, then slid sideways by up to a
+    // quarter of the target's width each way), then its other sides.
+    let slide = tfp.half[0] / 2.0;
+    let spots = [
+        (0, 0.0),
+        (0, slide / 2.0),
+        (0, -slide / 2.0),
+        (0, slide),
+        (0, -slide),
+    ]
+    .into_iter()
+    .chain((1..4).map(|k| (k, 0.0)));
+    for (k, offset) in spots {
         let yaw_t = target.world_from_object.yaw() + k as f64 * std::f64::consts::FRAC_PI_2;
         let dir = [-yaw_t.sin(), yaw_t.cos()];
+        let across = [yaw_t.cos(), yaw_t.sin()];
         let reach = if k % 2 == 0 { tfp.half[1] } else { tfp.half[0] };
         let dist = reach + gap + routed.size[1] / 2.0;
-        let p = [tfp.center[0] + dir[0] * dist, tfp.center[1] + dir[1] * dist];
-        let yaw = wrap_angle(yaw_facing(p, tfp.center));
+        let p = [
+            tfp.center[0] + dir[0] * dist + across[0] * offset,
+            tfp.center[1] + dir[1] * dist + across[1] * offset,
+        ];
+        let yaw = wrap_angle(yaw_t + std::f64::consts::PI);
         let pose = Pose::from_xyz_yaw(p[0], p[1], 0.0, yaw);
         match try_place(state, &routed, pose) {
             Ok(id) => return result_for(state, &[id], routed.notes.clone()),
@@ -556,6 +605,111 @@ fn place_facing(state: &mut StageState, a: FacingArgs) -> Result<PlaceResult, To
     }
     Err(ToolError::failed(format!(
         "no free side of {} to face it from: {}",
+        a.target,
+        tried.join("; ")
+    )))
+}
+
+fn placed_footprint(state: &StageState, id: &str) -> Result<Footprint, ToolError> {
+    let obj = state
+        .scene
+        .scene
+        .object(id)
+        .ok_or_else(|| ToolError::failed(format!("no object {id:?}")))?;
+    let rec = state
+        .scene
+        .scene
+        .assets
+        .get(&obj.asset)
+        .ok_or_else(|| ToolError::failed(format!("{id} has no asset")))?;
+    Ok(Footprint::of(rec, &obj.world_from_object))
+}
+
+/// The pose that puts the footprint centre of an asset with bounds `bounds` at `centre` with
+/// heading `yaw` (an asset's origin need not be its footprint's centre).
+fn pose_for_centre(bounds: &[[f64; 3]; 2], centre: [f64; 2], yaw: f64) -> Pose {
+    let [lo, hi] = bounds;
+    let (cx, cy) = ((lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0);
+    let (s, c) = yaw.sin_cos();
+    Pose::from_xyz_yaw(
+        centre[0] - (c * cx - s * cy),
+        centre[1] - (s * cx + c * cy),
+        0.0,
+        yaw,
+    )
+}
+
+fn place_relative(state: &mut StageState, a: RelativeArgs) -> Result<PlaceResult, ToolError> {
+    let t = placed_footprint(state, &a.target)?;
+    let routed = state.route_asset(&a.description, None)?;
+    let bounds = state
+        .scene
+        .scene
+        .assets
+        .get(&routed.asset)
+        .map(|r| r.bounds)
+        .ok_or_else(|| ToolError::failed("asset vanished"))?;
+    let own = [
+        (bounds[1][0] - bounds[0][0]) / 2.0,
+        (bounds[1][1] - bounds[0][1]) / 2.0,
+    ];
+    // The target's own axes: x to its right, y to its front (a yaw of 0 faces +Y).
+    let (s, c) = t.yaw.sin_cos();
+    let (x_axis, y_axis) = ([c, s], [-s, c]);
+    let at = |along_x: f64, along_y: f64| {
+        [
+            t.center[0] + x_axis[0] * along_x + y_axis[0] * along_y,
+            t.center[1] + x_axis[1] * along_x + y_axis[1] * along_y,
+        ]
+    };
+    let candidates: Vec<([f64; 2], f64)> = match a.relation {
+        Relation::Beside => {
+            let gap = a.gap_m.unwrap_or(0.05).clamp(0.0, 2.0);
+            let back_in_line = -t.half[1] + own[1];
+            [1.0, -1.0]
+                .iter()
+                .map(|side| (at(side * (t.half[0] + gap + own[0]), back_in_line), t.yaw))
+                .collect()
+        }
+        Relation::InFront => {
+            let gap = a.gap_m.unwrap_or(0.4).clamp(0.0, 4.0);
+            let centre = at(0.0, t.half[1] + gap + own[1]);
+            vec![(centre, wrap_angle(yaw_facing(centre, t.center)))]
+        }
+        Relation::Behind => {
+            let gap = a.gap_m.unwrap_or(0.1).clamp(0.0, 4.0);
+            vec![(at(0.0, -(t.half[1] + gap + own[1])), t.yaw)]
+        }
+        Relation::Between => {
+            let second = a
+                .second
+                .as_deref()
+                .ok_or_else(|| ToolError::failed("\"between\" needs a second object"))?;
+            let u = placed_footprint(state, second)?;
+            let centre = [
+                (t.center[0] + u.center[0]) / 2.0,
+                (t.center[1] + u.center[1]) / 2.0,
+            ];
+            let facing_each_other =
+                wrap_angle(t.yaw - u.yaw).abs() > 3.0 * std::f64::consts::FRAC_PI_4;
+            let yaw = if facing_each_other {
+                wrap_angle(yaw_facing(centre, t.center))
+            } else {
+                t.yaw
+            };
+            vec![(centre, yaw)]
+        }
+    };
+    let mut tried = Vec::new();
+    for (centre, yaw) in candidates {
+        match try_place(state, &routed, pose_for_centre(&bounds, centre, yaw)) {
+            Ok(id) => return result_for(state, &[id], routed.notes.clone()),
+            Err(e) => tried.push(e.message),
+        }
+    }
+    Err(ToolError::failed(format!(
+        "no room {:?} {}: {}",
+        a.relation,
         a.target,
         tried.join("; ")
     )))
@@ -585,6 +739,12 @@ pub fn toolbox() -> Toolbox<StageState> {
         "Place a piece facing a target object at a distance (e.g. a sofa facing a TV stand).",
         Access::Modify,
         place_facing,
+    );
+    t.add(
+        "place_relative",
+        "Place a piece beside, in front of or behind an object, or between two objects (e.g. a nightstand beside the bed, a coffee table between two sofas).",
+        Access::Modify,
+        place_relative,
     );
     t
 }
