@@ -563,15 +563,8 @@ fn place_around(state: &mut StageState, a: AroundArgs) -> Result<PlaceResult, To
 }
 
 fn place_facing(state: &mut StageState, a: FacingArgs) -> Result<PlaceResult, ToolError> {
-    let target = state
-        .scene
-        .scene
-        .object(&a.target)
-        .cloned()
-        .ok_or_else(|| ToolError::failed(format!("no object {:?}", a.target)))?;
+    let tfp = placed_footprint(state, &a.target)?;
     let routed = state.route_asset(&a.description, None)?;
-    let trec = state.scene.scene.assets[&target.asset].clone();
-    let tfp = Footprint::of(&trec, &target.world_from_object);
     let gap = a.distance_m.unwrap_or(0.6).clamp(0.1, 4.0);
     let mut tried = Vec::new();
     // Try in front of the target first (straight across, then slid sideways by up to a
@@ -587,7 +580,7 @@ fn place_facing(state: &mut StageState, a: FacingArgs) -> Result<PlaceResult, To
     .into_iter()
     .chain((1..4).map(|k| (k, 0.0)));
     for (k, offset) in spots {
-        let yaw_t = target.world_from_object.yaw() + k as f64 * std::f64::consts::FRAC_PI_2;
+        let yaw_t = tfp.yaw + k as f64 * std::f64::consts::FRAC_PI_2;
         let dir = [-yaw_t.sin(), yaw_t.cos()];
         let across = [yaw_t.cos(), yaw_t.sin()];
         let reach = if k % 2 == 0 { tfp.half[1] } else { tfp.half[0] };
