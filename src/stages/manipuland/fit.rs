@@ -269,7 +269,12 @@ fn fit_with(
             // a raster from the back-left corner packs the surface (the parent's -Y side: a
             // desk's monitor and a counter's appliances stand at the back), rows along u; a
             // basin or a bowl is packed from the start.
-            let first = centre_first && taken.is_empty() && !is_receptacle(s);
+            // Centred, it must not cost the surface a second item of its size: a folded towel
+            // in the middle of a 0.9 m shelf left 0.29 m either side, too little for the next.
+            let first = centre_first
+                && taken.is_empty()
+                && !is_receptacle(s)
+                && !centre_spoils_a_second(su, sv, hu, hv);
             let fits_margin = hu + EDGE_MARGIN <= su && hv + EDGE_MARGIN <= sv;
             (first && fits_margin)
                 .then(|| nearest_centre(su - EDGE_MARGIN, sv - EDGE_MARGIN, hu, hv, free, make))
@@ -288,6 +293,14 @@ fn fit_with(
         *rot,
     ));
     Ok((s.world_from_surface().compose(&local), slot))
+}
+
+/// Whether an item of half-extents `(hu, hv)` centred on a surface of half-extents `(su, sv)`
+/// leaves no room beside it for a second of its size, where packed from a corner two would fit.
+fn centre_spoils_a_second(su: f64, sv: f64, hu: f64, hv: f64) -> bool {
+    let beside = |s: f64, h: f64| s - h >= 2.0 * h + GAP;
+    let two = |s: f64, h: f64| 2.0 * s >= 4.0 * h + GAP;
+    (two(su, hu) || two(sv, hv)) && !(beside(su, hu) || beside(sv, hv))
 }
 
 /// How far the first raster pass keeps an item from its surface's edges (m).
@@ -393,6 +406,18 @@ mod tests {
         // Nothing fits: both say so.
         assert!(nearest_centre(0.3, 0.3, 0.05, 0.05, |_: &Slot| false, make).is_none());
         assert!(raster(0.3, 0.3, 0.05, 0.05, |_, _| None).is_none());
+    }
+
+    /// A first item goes to the centre unless that leaves no room for a second of its size.
+    #[test]
+    fn centring_keeps_room_for_a_second_item() {
+        // A 0.33 m towel on a 0.90 x 0.32 m shelf: centred, 0.29 m either side; packed, two fit.
+        assert!(centre_spoils_a_second(0.45, 0.16, 0.165, 0.11));
+        // A can on the same shelf, a plate on a table: room beside it either way.
+        assert!(!centre_spoils_a_second(0.45, 0.16, 0.033, 0.033));
+        assert!(!centre_spoils_a_second(0.8, 0.45, 0.135, 0.135));
+        // A board as wide as most of the shelf: only one fits anyway, so it is centred.
+        assert!(!centre_spoils_a_second(0.45, 0.16, 0.3, 0.1));
     }
 
     #[test]
