@@ -259,6 +259,13 @@ impl RoomPlan {
 /// Upper bound on one want's count (a room holds only so much).
 const MAX_COUNT: u32 = 120;
 
+/// Fewest small objects a room's plan holds before the stage sizes them to the built pieces
+/// (at the usual density): below it the room gets storage pieces of its role
+/// (`storage_for_clutter`). The stage grows a room's default clutter towards
+/// `stages::clutter::ROOM_FLOOR` by at most `MAX_FLOOR_GROWTH` times, so this is their
+/// quotient (a test there checks it).
+pub const STORAGE_FLOOR: u32 = 30;
+
 /// How far into a [min, max] range the defaults go, per density.
 fn fill_factor(d: Option<Density>) -> f64 {
     match d {
@@ -504,6 +511,7 @@ pub fn plan_room_of_house(reading: &Reading, room: usize, elsewhere: &[String]) 
     b.place_settings();
     b.defaults();
     b.surface_parents();
+    b.storage_for_clutter();
     b.surface_defaults();
     b.finish()
 }

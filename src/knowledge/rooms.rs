@@ -172,6 +172,12 @@ pub struct HouseTables {
     /// word -> room type.
     #[serde(default)]
     pub count_words: BTreeMap<String, String>,
+    /// Storage and display pieces a room of each role gets, in this order, while the pieces
+    /// it plans hold too few small objects for its usual clutter (a music room of a piano, a
+    /// drum kit and guitar stands; see `plan::STORAGE_FLOOR`). A noun may repeat: one more of
+    /// it.
+    #[serde(default)]
+    pub clutter_storage: BTreeMap<Role, Vec<String>>,
 }
 
 /// Errors in the room data.

@@ -5,9 +5,9 @@
 use std::collections::BTreeMap;
 
 use super::{
-    Arrangement, Builder, MAX_COUNT, RoomPlan, SurfaceItem, SurfaceWant, Want, clutter_factor,
-    covers, fill_factor, is_seat, is_table_like, is_table_seat, one_per_parent, pick,
-    place_to_arrangement, split_counts,
+    Arrangement, Builder, MAX_COUNT, RoomPlan, STORAGE_FLOOR, SurfaceItem, SurfaceWant, Want,
+    clutter_factor, covers, fill_factor, is_seat, is_table_like, is_table_seat, one_per_parent,
+    pick, place_to_arrangement, split_counts,
 };
 use crate::assets::router::naming::footprint;
 use crate::knowledge::{KbItem, Place};
@@ -410,6 +410,76 @@ impl Builder<'_> {
                 "any".to_string()
             };
             self.surface[k].parent = parent;
+        }
+    }
+
+    /// Small objects the plan will hold before the stage grows them to the built surfaces:
+    /// what the prompt puts on pieces itself, and what `surface_defaults` plans on the pieces
+    /// it left empty.
+    fn planned_clutter(&self) -> u32 {
+        let cf = clutter_factor(self.density);
+        let t = fill_factor(self.density);
+        let asked: u32 = self.surface.iter().map(|s| s.want.count).sum();
+        let mut seen: Vec<&str> = Vec::new();
+        let mut defaults = 0;
+        for w in self.plan.furniture.iter().chain(&self.plan.wall) {
+            if seen.contains(&w.noun.as_str()) || self.surface.iter().any(|s| s.parent == w.noun) {
+                continue;
+            }
+            seen.push(&w.noun);
+            let kb_rule = self.kb.surface_rule(&w.noun);
+            let Some(rule) = self.rt.and_then(|r| r.surface_rule(&w.noun)).or(kb_rule) else {
+                continue;
+            };
+            if rule.place_settings {
+                continue;
+            }
+            let inside = if rule.inside.is_empty() {
+                kb_rule.map_or(0, |k| k.inside.len())
+            } else {
+                rule.inside.len()
+            } as u32;
+            let open = ((pick(rule.count, t) as f64) * cf).round() as u32;
+            let stored = (f64::from(inside) * cf).round() as u32;
+            defaults += (open + stored) * w.count;
+        }
+        asked + defaults
+    }
+
+    /// A room whose planned pieces hold fewer small objects than [`STORAGE_FLOOR`] gets the
+    /// storage and display pieces of its role (`clutter_storage` in `_house.json`), one at a
+    /// time, until they do: the stage can grow a room's clutter to at most twice what the plan
+    /// holds, so a music room of a piano, a drum kit and guitar stands stayed near 30 objects
+    /// whatever its size. Not in a minimal or sparse room; never a piece the prompt excludes
+    /// or counts exactly (here or in another room of the house).
+    pub(super) fn storage_for_clutter(&mut self) {
+        if matches!(self.density, Some(Density::Minimalist | Density::Sparse)) {
+            return;
+        }
+        let Some(rt) = self.rt else { return };
+        let registry = crate::knowledge::rooms::registry();
+        let Some(pieces) = registry.house().clutter_storage.get(&rt.role) else {
+            return;
+        };
+        for noun in pieces {
+            if self.planned_clutter() >= STORAGE_FLOOR {
+                return;
+            }
+            if self.excluded(noun) || self.fixed_by_prompt(noun) || self.named_elsewhere(noun) {
+                continue;
+            }
+            match self.plan.furniture.iter_mut().find(|w| w.noun == *noun) {
+                Some(w) if !w.explicit => w.count = (w.count + 1).min(MAX_COUNT),
+                Some(_) => {}
+                None => {
+                    let support = self.lex.lookup(noun).map_or(Support::Floor, |e| e.support);
+                    let want = self.added_piece(noun, support, Arrangement::AgainstWall);
+                    match support {
+                        Support::Wall => self.plan.wall.push(want),
+                        _ => self.plan.furniture.push(want),
+                    }
+                }
+            }
         }
     }
 

@@ -203,6 +203,15 @@ mod tests {
         }
     }
 
+    /// The plan's storage floor is what the stage's growth can take to the room floor.
+    #[test]
+    fn the_plans_storage_floor_grows_to_the_room_floor() {
+        assert_eq!(
+            f64::from(crate::plan::STORAGE_FLOOR) * MAX_FLOOR_GROWTH,
+            f64::from(ROOM_FLOOR)
+        );
+    }
+
     #[test]
     fn a_dresser_fills_its_drawers_and_a_bookcase_its_shelves() {
         let dresser = sized_to(
