@@ -10,7 +10,7 @@ use super::{
     pick, place_to_arrangement, split_counts,
 };
 use crate::assets::router::naming::footprint;
-use crate::knowledge::{KbItem, Place};
+use crate::knowledge::{KbItem, Place, SurfaceRule};
 use crate::prompt::{Density, Mention};
 use crate::words::Support;
 
@@ -413,6 +413,24 @@ impl Builder<'_> {
         }
     }
 
+    /// The small-object rule for `parent`: the room type's, else the room-independent one.
+    /// What a piece holds inside is the same in any room: a room's rule for its top takes the
+    /// piece's own list when it has none.
+    fn surface_rule_of(&self, parent: &str) -> Option<SurfaceRule> {
+        let kb_rule = self.kb.surface_rule(parent);
+        let mut rule = self
+            .rt
+            .and_then(|r| r.surface_rule(parent))
+            .or(kb_rule)
+            .cloned()?;
+        if rule.inside.is_empty()
+            && let Some(k) = kb_rule
+        {
+            rule.inside.clone_from(&k.inside);
+        }
+        Some(rule)
+    }
+
     /// Small objects the plan will hold before the stage grows them to the built surfaces:
     /// what the prompt puts on pieces itself, and what `surface_defaults` plans on the pieces
     /// it left empty.
@@ -427,20 +445,14 @@ impl Builder<'_> {
                 continue;
             }
             seen.push(&w.noun);
-            let kb_rule = self.kb.surface_rule(&w.noun);
-            let Some(rule) = self.rt.and_then(|r| r.surface_rule(&w.noun)).or(kb_rule) else {
+            let Some(rule) = self.surface_rule_of(&w.noun) else {
                 continue;
             };
             if rule.place_settings {
                 continue;
             }
-            let inside = if rule.inside.is_empty() {
-                kb_rule.map_or(0, |k| k.inside.len())
-            } else {
-                rule.inside.len()
-            } as u32;
             let open = ((pick(rule.count, t) as f64) * cf).round() as u32;
-            let stored = (f64::from(inside) * cf).round() as u32;
+            let stored = (rule.inside.len() as f64 * cf).round() as u32;
             defaults += (open + stored) * w.count;
         }
         asked + defaults
@@ -500,20 +512,9 @@ impl Builder<'_> {
                 continue;
             }
             done.push(parent.clone());
-            let kb_rule = self.kb.surface_rule(&parent);
-            let rule = self
-                .rt
-                .and_then(|r| r.surface_rule(&parent))
-                .or(kb_rule)
-                .cloned();
-            let Some(mut rule) = rule else { continue };
-            // What a piece holds inside is the same in any room: a room's rule for its top
-            // takes the piece's own list when it has none.
-            if rule.inside.is_empty()
-                && let Some(k) = kb_rule
-            {
-                rule.inside.clone_from(&k.inside);
-            }
+            let Some(rule) = self.surface_rule_of(&parent) else {
+                continue;
+            };
             if rule.place_settings {
                 let seats: u32 = self
                     .plan
