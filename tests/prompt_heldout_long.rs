@@ -74,8 +74,11 @@ fn check(id: &str, kind: &str, r: &Reading, reqs: &[Value], s: &mut Score) {
     }
     let mut used = vec![false; r.mentions.len()];
     for q in reqs {
+        // A room requirement names a room alone: `{"absent": "chair", "room": "cell"}` is an
+        // absent requirement in a room.
         if let Some(label) = q.get("room").and_then(Value::as_str)
             && q.get("object").is_none()
+            && q.get("absent").is_none()
         {
             s.rooms += 1;
             let op = q["count"].as_str().unwrap_or("=1");
@@ -212,7 +215,7 @@ fn score_file(path: &str, title: &str, misses_env: &str, read_env: Option<&str>)
             println!("  miss: {m}");
         }
     }
-    assert!(n >= 40, "{n} prompts");
+    assert!(n >= 30, "{n} prompts");
     s
 }
 
@@ -253,6 +256,36 @@ fn reader_on_second_held_out_long_prompts() {
         None,
     );
     assert_floors(&s, 90.0, 88.0, 93.0);
+}
+
+/// A third held-out file (`tests/fixtures/heldout_long3.jsonl`, 30 prompts), written on
+/// 2026-11-29 by a helper who read neither the reader nor the lexicon: scored, never read or
+/// tuned on. First run (commit a0f59cb): objects 86.2 %, absents 88.9 %, rooms 91.7 %,
+/// refused 2/2; after the session's reader changes 87.4 %, 88.9 %, 93.1 %.
+#[test]
+fn reader_on_third_held_out_long_prompts() {
+    let s = score_file(
+        "tests/fixtures/heldout_long3.jsonl",
+        "reader on the third held-out long prompts",
+        "HELDOUT3_NEVER_PRINTED",
+        None,
+    );
+    assert_floors(&s, 84.0, 85.0, 90.0);
+}
+
+/// The second development file (`tests/fixtures/devlong2.jsonl`, 40 prompts), written with
+/// the third held-out file by the same helper; the reader may be tuned on it. First run
+/// (commit a0f59cb): objects 87.7 %, absents 100 %, rooms 94.9 %; after this session's
+/// changes 91.0 %, 100 %, 98.0 %.
+#[test]
+fn reader_on_second_dev_long_prompts() {
+    let s = score_file(
+        "tests/fixtures/devlong2.jsonl",
+        "reader on the second dev long prompts",
+        "DEVLONG2_MISSES",
+        Some("DEVLONG2_READ"),
+    );
+    assert_floors(&s, 88.0, 95.0, 96.0);
 }
 
 /// The development set of the same kind: the one the reader may be tuned on.

@@ -283,10 +283,11 @@ pub(crate) fn modifier_at(
     {
         return Some(single(t, ModKind::Adjective(w.to_string())));
     }
-    // "a mounted vise", "two stacked crates", "the sleeping loft": a participle the verb
-    // table lists, right after a determiner or a number and before a noun, modifies it.
+    // "a mounted vise", "two stacked crates", "the sleeping loft", "two full bathrooms": a
+    // participle or adjective the verb table lists, right after a determiner or a number and
+    // before a noun, modifies it.
     let wn = crate::words::wordnet::wordnet();
-    if (w.ends_with("ed") || w.ends_with("ing"))
+    if (w.ends_with("ed") || w.ends_with("ing") || crate::words::ground::is_adjective(w))
         && lex.verb(w).is_some()
         && at > 0
         && tokens

@@ -153,6 +153,9 @@ pub fn read(prompt: &str) -> Reading {
         .into_iter()
         .map(|r| chunk::chunk_sentence(lex, kb, &toks, r))
         .collect();
+    if let Some(first) = chunks.first_mut() {
+        rooms::room_named_by_part(lex, &toks, first);
+    }
     let st = rooms::structure(lex, &toks, &chunks);
     // List items read as rooms are rooms for the interpreter too.
     if let Some(list) = st.list_sentence.and_then(|i| chunks.get_mut(i)) {

@@ -361,6 +361,11 @@ impl<'a> Phrase<'a> {
             class.to_string()
         });
         j += 1;
+        // "each with its own swivel chair": one more of its kind per owner, not a reference.
+        if class == "possessive" && self.at(j) == Some("own") && self.at(j + 1).is_some() {
+            np.det = Some("indefinite".to_string());
+            j += 1;
+        }
         if w == "the" && self.at(j) == Some("other") {
             np.other = true;
             j += 1;
@@ -708,6 +713,7 @@ impl<'a> Phrase<'a> {
             && !verb_s(j + n - 1)
         {
             np.plural = lex.is_plural(&tokens[j + n - 1].text);
+            let words = singular_last(lex, &words);
             np.head = Head::Room { key, words };
             return Some(j + n);
         }
@@ -718,7 +724,7 @@ impl<'a> Phrase<'a> {
             && let Some((n, key, words)) = wordnet_room(lex, tokens, j, end)
         {
             np.plural = lex.is_plural(&tokens[j + n - 1].text);
-            let words = room_name(lex, tokens, before.mods_from, j, words);
+            let words = room_name(lex, tokens, before.mods_from, j, singular_last(lex, &words));
             np.head = Head::Room { key, words };
             return Some(j + n);
         }
@@ -1417,7 +1423,12 @@ fn compound_tail(
             || lex.number(t).is_some()
             || lex.quantifier_at(tokens, at + len).is_some()
     });
-    if starts_phrase && lex.verb(&tokens[at + len - 1].text).is_some() {
+    // "a bread bin and a toaster share a corner": a word WordNet knows as a verb is one here
+    // too, unless the noun before and it are one WordNet noun.
+    let last_word = tokens[at + len - 1].text.as_str();
+    let wordnet_verb =
+        wn.has_pos(last_word, crate::words::wordnet::Pos::Verb) && !(len == 1 && wn_compound(at));
+    if starts_phrase && (lex.verb(last_word).is_some() || wordnet_verb) {
         return None;
     }
     let words: Vec<&str> = tokens[at..at + len]
@@ -2080,4 +2091,12 @@ fn name_of(lex: &Lexicon, tokens: &[Token], from: usize, at: usize, noun: &str) 
         k -= 1;
     }
     name
+}
+
+/// The words with their last one singular ("six stalls": "stall").
+pub(crate) fn singular_last(lex: &Lexicon, words: &str) -> String {
+    match words.rsplit_once(' ') {
+        Some((pre, last)) => format!("{pre} {}", lex.singular(last)),
+        None => lex.singular(words),
+    }
 }

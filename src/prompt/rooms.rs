@@ -210,6 +210,16 @@ fn generic_room(np: &Np) -> bool {
         && crate::knowledge::knowledge().room_type_of(words) == Some("room"))
 }
 
+/// "round, snug and richly decorated": a one-word room phrase with no determiner or number
+/// whose word WordNet also reads as an adjective describes; it names no room.
+fn bare_adjective_room(np: &Np) -> bool {
+    matches!(&np.head, Head::Room { words, .. } if !words.contains(' ')
+        && crate::words::ground::is_adjective(words))
+        && np.det.is_none()
+        && np.number.is_none()
+        && !np.plural
+}
+
 /// A zone inside a room rather than a room: "a seating area", "a reading nook".
 fn zone(np: &Np) -> bool {
     matches!(&np.head, Head::Room { words, .. } if ["area", "corner", "nook", "zone", "space"].iter().any(|z| words.ends_with(z)))
@@ -245,6 +255,13 @@ fn introduced_rooms(chunks: &[Chunk], in_house: bool) -> Vec<&Np> {
         if (governed && !(in_house && prep)) || np.det.as_deref() == Some("possessive") {
             continue;
         }
+        // "a bench with five cubbies": what a thing comes with is part of it, not a room.
+        let part_of_thing = k > 1
+            && chunks[k - 1].item == Item::With
+            && matches!(&chunks[k - 2].item, Item::Np(p) if matches!(p.head, Head::Object { .. }));
+        if part_of_thing {
+            continue;
+        }
         if in_house {
             out.push(np.as_ref());
             continue;
@@ -273,6 +290,101 @@ fn introduced_rooms(chunks: &[Chunk], in_house: bool) -> Vec<&Np> {
         }
     }
     out
+}
+
+/// A prompt that opens with a part of a building or its inside names its room that way: "The
+/// command bridge of a research vessel, ..." is a room called "command bridge"; "The inside
+/// of a Mongolian ger, ..." a room called "ger". The first sentence's chunks are rewritten:
+/// the room phrase becomes a room, the building around it names no object.
+pub(crate) fn room_named_by_part(lex: &Lexicon, tokens: &[Token], first: &mut [Chunk]) {
+    // "The inside of a ger": "inside of" reads as a preposition after a bare "the".
+    if let [a, prep, b, ..] = &mut *first
+        && matches!(prep.item, Item::Prep(_))
+        && matches!(&a.item, Item::Np(np) if np.det.as_deref() == Some("definite") && a.range.len() == 1)
+        && matches!(
+            tokens.get(prep.range.start).map(|t| t.text.as_str()),
+            Some("inside" | "interior")
+        )
+        && let Item::Np(whole) = &mut b.item
+        && !matches!(whole.head, Head::Room { .. })
+    {
+        let words = match &whole.head {
+            Head::Object { noun, .. } => Some(noun.clone()),
+            Head::NonObject => whole.report.as_ref().map(|r| r.noun.clone()),
+            _ => None,
+        };
+        let words = words.or_else(|| {
+            tokens[b.range.clone()]
+                .iter()
+                .rev()
+                .find(|t| t.is_word())
+                .map(|t| lex.singular(&t.text))
+        });
+        if let Some(words) = words {
+            let reg = crate::knowledge::knowledge();
+            let head = words.rsplit(' ').next().unwrap_or(&words).to_string();
+            let key =
+                crate::words::ground::room_family(&head, &|n: &str| reg.room_type_of(n).is_some())
+                    .and_then(|f| reg.room_type_of(&f.noun).map(str::to_string))
+                    .unwrap_or_else(|| "room".to_string());
+            whole.head = Head::Room { key, words };
+            // The room is what the "of" phrase names, not a place where something is.
+            prep.item = Item::Of;
+        }
+        return;
+    }
+    let [a, of, b, ..] = first else { return };
+    if of.item != Item::Of {
+        return;
+    }
+    let (Item::Np(part), Item::Np(whole)) = (&mut a.item, &mut b.item) else {
+        return;
+    };
+    if part.det.as_deref() != Some("definite") || part.number.is_some() {
+        return;
+    }
+    let reg = crate::knowledge::knowledge();
+    let room_type = |words: &str| {
+        let head = words.rsplit(' ').next().unwrap_or(words);
+        crate::words::ground::room_family(head, &|n: &str| reg.room_type_of(n).is_some())
+            .and_then(|f| reg.room_type_of(&f.noun).map(str::to_string))
+            .unwrap_or_else(|| "room".to_string())
+    };
+    let last_word = |r: &std::ops::Range<usize>| {
+        tokens[r.clone()]
+            .iter()
+            .rev()
+            .find(|t| t.is_word())
+            .map(|t| lex.singular(&t.text))
+    };
+    // The noun a phrase names, read as a thing or not ("command bridge" is rarely one).
+    let noun_of = |np: &Np| match &np.head {
+        Head::Object { noun, .. } => Some(noun.clone()),
+        Head::Room { words, .. } => Some(words.clone()),
+        Head::NonObject => np.report.as_ref().map(|r| r.noun.clone()),
+        _ => None,
+    };
+    let inside = last_word(&a.range).is_some_and(|w| matches!(w.as_str(), "inside" | "interior"));
+    if inside {
+        if !matches!(whole.head, Head::Room { .. })
+            && let Some(words) = noun_of(whole).or_else(|| last_word(&b.range))
+        {
+            let key = room_type(&words);
+            whole.head = Head::Room { key, words };
+        }
+        part.head = Head::NonObject;
+        return;
+    }
+    if matches!(part.head, Head::Room { .. }) {
+        return;
+    }
+    if let (Some(words), Some(whole_words)) = (noun_of(part), noun_of(whole))
+        && crate::words::ground::can_be_building(&whole_words)
+    {
+        let key = room_type(&words);
+        part.head = Head::Room { key, words };
+        whole.head = Head::NonObject;
+    }
 }
 
 /// The sentence, among the first few, that lists the rooms: rooms after "with", a
@@ -325,7 +437,7 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], sentences: &[Vec<Chunk>
         .unwrap_or_default();
     let density = head_np.as_ref().and_then(|(np, _)| density_of(lex, np));
     // Room phrases after "with"; "X with en-suite Ys" makes Ys children of X.
-    let coerced = with_at.map_or_else(Vec::new, |w| coerced_rooms(&first[w + 1..]));
+    let coerced = with_at.map_or_else(Vec::new, |w| coerced_rooms(lex, &first[w + 1..]));
     let mut listed: Vec<(&Np, Option<usize>)> = Vec::new();
     if let Some(w) = with_at {
         let mut last_room: Option<usize> = None;
@@ -432,7 +544,7 @@ pub(crate) fn structure(lex: &Lexicon, tokens: &[Token], sentences: &[Vec<Chunk>
 /// staff toilet"): in a list of at least two rooms, a phrase outside any room's "with"
 /// whose head WordNet also knows as a room is that room. (index in `items`, the phrase as a
 /// room).
-fn coerced_rooms(items: &[Chunk]) -> Vec<(usize, Np)> {
+fn coerced_rooms(lex: &Lexicon, items: &[Chunk]) -> Vec<(usize, Np)> {
     let rooms = items
         .iter()
         .enumerate()
@@ -454,10 +566,15 @@ fn coerced_rooms(items: &[Chunk]) -> Vec<(usize, Np)> {
             Item::Np(np) => {
                 match &np.head {
                     Head::Room { .. } => in_with = false,
-                    Head::Object { noun, .. } if !in_with && !after_prep => {
-                        let head = noun.rsplit(' ').next().unwrap_or(noun);
-                        let roomlike =
-                            crate::words::ground::noun_info(head).is_some_and(|i| i.roomlike);
+                    Head::Object { noun, entry, .. } if !in_with && !after_prep => {
+                        // "six stalls": the room words are singular.
+                        let noun = super::phrase::singular_last(lex, noun);
+                        let head = noun.rsplit(' ').next().unwrap_or(&noun);
+                        // Among three rooms or more, a thing the lexicon does not know is
+                        // a room too ("..., a gym and four sleeping pods").
+                        let roomlike = crate::words::ground::noun_info(head)
+                            .is_some_and(|i| i.roomlike)
+                            || (entry.is_none() && rooms >= 3);
                         if roomlike {
                             let key = crate::words::ground::room_family(head, &|n: &str| {
                                 reg.room_type_of(n).is_some()
@@ -561,6 +678,7 @@ fn single_room(
             Item::Np(np)
                 if matches!(&np.head, Head::Room { key, .. } if !registry_type || key != "room")
                     && !generic_room(np)
+                    && !bare_adjective_room(np)
                     && !np.negated
                     && (placed_ok || k == 0 || !matches!(chunks[k - 1].item, Item::Prep(_))) =>
             {
@@ -820,8 +938,14 @@ fn add_rooms(lex: &Lexicon, nps: &[&Np], st: &mut Structure) -> bool {
         // is not "the bunk room".
         let head = |w: &str| w.rsplit(' ').next().unwrap_or("").to_string();
         let type_name = crate::knowledge::knowledge().room_type_of(words) == Some(key.as_str());
+        // "a half bath; upstairs there are two full bathrooms": a counted phrase in other
+        // words introduces rooms of its own.
+        let counted_new = np.number.is_some_and(|n| n >= 2) && !np.is_definite();
         let known = st.rooms.iter().any(|r| {
-            (r.room_type == *key && key != "room" && (type_name || head(&r.words) == head(words)))
+            (r.room_type == *key
+                && key != "room"
+                && !counted_new
+                && (type_name || head(&r.words) == head(words)))
                 || r.words == *words
                 || r.words.ends_with(&format!(" {words}"))
         }) || st.aliases.contains(words);

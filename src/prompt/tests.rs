@@ -960,3 +960,109 @@ fn a_noun_that_is_also_an_adjective_before_a_style_word_is_an_adjective() {
     let cats: Vec<&str> = r.mentions.iter().map(|m| m.category.as_str()).collect();
     assert_eq!(cats, ["counter", "chair"], "{cats:?}");
 }
+
+#[test]
+fn an_additive_conjunction_ends_a_per_parent_list() {
+    let r = read(
+        "In the dining room there are five tables, each with two chairs, plus a long banquette.",
+    );
+    assert!(matches!(find(&r, "chair").per, Some(Per::Each { .. })));
+    assert_eq!(find(&r, "banquette").per, None);
+    assert_eq!(r.total(index(&r, "banquette")), Count::Exactly(1));
+}
+
+#[test]
+fn each_and_a_counted_noun_refers_back() {
+    let r = read("The office has four desks. Each desk has a monitor and a lamp.");
+    assert_eq!(r.total(index(&r, "monitor")), Count::Exactly(4));
+    let r =
+        read("The open office has sixteen desks, each desk with an office chair and a monitor.");
+    assert_eq!(r.total(index(&r, "office chair")), Count::Exactly(16));
+    assert_eq!(
+        r.mentions.iter().filter(|m| m.category == "desk").count(),
+        1
+    );
+    // A participle the verb table lacks still leads into the per-parent list.
+    let r = read(
+        "Two long benches run the length of the room, each fitted with a sink and four stools.",
+    );
+    assert_eq!(r.total(index(&r, "sink")), Count::Exactly(2));
+    assert_eq!(r.total(index(&r, "stool")), Count::Exactly(8));
+    // "its own": one more per owner, not a reference to the seat named before.
+    let r = read(
+        "Two stations each with a seat, and three workstations, each with its own swivel chair.",
+    );
+    let swivel = r
+        .mentions
+        .iter()
+        .position(|m| m.noun == "swivel chair")
+        .unwrap();
+    assert_eq!(r.total(swivel), Count::Exactly(3));
+}
+
+#[test]
+fn rooms_counted_again_in_other_words_are_new_rooms() {
+    let r = read(
+        "On the ground floor there is a kitchen and a half bath. Upstairs there are four bedrooms and two full bathrooms.",
+    );
+    let baths = r.rooms.iter().filter(|x| x.room_type == "bathroom").count();
+    assert_eq!(
+        baths,
+        3,
+        "{:?}",
+        r.rooms.iter().map(|x| &x.name).collect::<Vec<_>>()
+    );
+    // What a thing comes with is no room ("cubby" is a room to WordNet).
+    let r = read(
+        "The house has a mudroom, a kitchen and a den. The mudroom has a bench with five cubbies.",
+    );
+    assert!(r.rooms.iter().all(|x| !x.words.contains("cubby")));
+}
+
+#[test]
+fn unknown_list_items_among_rooms_are_rooms() {
+    let r = read(
+        "It consists of an airlock, a galley, a lab, a gym and four sleeping pods. Each sleeping pod has a bunk.",
+    );
+    let pods: Vec<usize> = (0..r.rooms.len())
+        .filter(|&i| r.rooms[i].words == "sleeping pod")
+        .collect();
+    assert_eq!(pods.len(), 4);
+    let bunks: Vec<usize> = r
+        .mentions
+        .iter()
+        .filter(|m| m.category == "bunk")
+        .map(|m| m.room)
+        .collect();
+    assert_eq!(bunks, pods, "one bunk in each pod, none in the airlock");
+    // Plural list items take singular room words.
+    let r = read("The stable block has six stalls, a tack room, a feed room and a wash bay.");
+    assert_eq!(r.rooms.iter().filter(|x| x.words == "stall").count(), 6);
+}
+
+#[test]
+fn a_part_or_the_inside_of_a_building_names_the_room() {
+    let r = read(
+        "The command bridge of a deep-space research vessel, sleek and futuristic. A captain's chair sits at the centre.",
+    );
+    assert_eq!(r.rooms[0].words, "command bridge");
+    assert!(r.mentions.iter().all(|m| !m.noun.contains("vessel")));
+    let r = read(
+        "The inside of a Mongolian ger, round, snug and richly decorated. A stove stands in the centre.",
+    );
+    assert!(r.rooms[0].words.ends_with("ger"), "{}", r.rooms[0].words);
+    assert!(r.mentions.iter().all(|m| !m.noun.contains("ger")));
+}
+
+#[test]
+fn a_negation_does_not_reach_back_or_past_a_reason() {
+    let r = read(
+        "A living room with a huge aquarium and a sofa. The room has no television, because the aquarium is the entertainment.",
+    );
+    assert!(!find(&r, "aquarium").negated);
+    assert!(find(&r, "tv").negated);
+    let r = read(
+        "A kitchen with a dishwasher. A bread bin and a toaster share a corner of the worktop.",
+    );
+    assert_eq!(find(&r, "toaster").noun, "toaster");
+}

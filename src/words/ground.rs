@@ -155,6 +155,20 @@ pub fn rules() -> &'static Rules {
     )
 }
 
+/// Whether some sense of `words` (or of its last word) is a whole building or ship: "vessel"
+/// of "the bridge of a research vessel", which is a container too.
+pub fn can_be_building(words: &str) -> bool {
+    let wn = wordnet();
+    let r = rules();
+    let last = words.rsplit(' ').next().unwrap_or(words);
+    let Some(lemma) = noun_lemma(words).or_else(|| noun_lemma(last)) else {
+        return false;
+    };
+    wn.noun_senses(&lemma)
+        .iter()
+        .any(|s| r.under_any(s.synset, &r.building_under))
+}
+
 /// Whether every room-like or physical sense of `words` is a whole building or ship ("hostel",
 /// "fire station", "narrowboat"), not a room in one.
 pub fn is_building(words: &str) -> bool {

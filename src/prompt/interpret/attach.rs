@@ -486,7 +486,8 @@ impl Interp<'_> {
                     // What follows is the first thing of each, not a new list item.
                     c.after_sep = false;
                     // ", each topped with ...": the participle and its "with" both lead in.
-                    c.each_with = matches!(next, Some(Item::Verb(..)))
+                    c.each_with = (matches!(next, Some(Item::Verb(..)))
+                        || self.participle(&chunks[k + 1]))
                         && matches!(chunks.get(k + 2).map(|x| &x.item), Some(Item::With));
                 }
             }

@@ -355,7 +355,10 @@ impl<'a> Interp<'a> {
             if let Some(sp) = self.spans.get_mut(self.room) {
                 sp.push(chunk.range.clone());
             }
-            if c.skip_next && matches!(chunk.item, Item::With | Item::Verb(..) | Item::Prep(_)) {
+            if c.skip_next
+                && (matches!(chunk.item, Item::With | Item::Verb(..) | Item::Prep(_))
+                    || self.participle(chunk))
+            {
                 c.skip_next = false;
                 k += 1;
                 continue;
@@ -393,6 +396,17 @@ impl<'a> Interp<'a> {
                         }
                     }
                     c.pending = None;
+                    // "five tables, each with two chairs, plus a banquette": an additive
+                    // conjunction after a comma ends the per-parent list.
+                    if !comma
+                        && matches!(c.ctx, Ctx::Each(_))
+                        && k > 0
+                        && chunks[k - 1].item == Item::Comma
+                        && self.additive(chunk)
+                    {
+                        c.ctx = Ctx::Room;
+                        c.stack.clear();
+                    }
                     if c.of_once {
                         // "a cup of tea and two books": the "of" phrase is over.
                         c.of_once = false;
@@ -466,6 +480,11 @@ impl<'a> Interp<'a> {
                 }
                 // "There is no sofa; instead, two armchairs": what follows is there.
                 Item::Other(w) if w == "instead" => c.negate = false,
+                // "no television, because the aquarium is ...": a reason clause is no longer
+                // under the negation.
+                Item::Other(w) if matches!(w.as_str(), "because" | "since" | "so") => {
+                    c.negate = false;
+                }
                 Item::Other(_) => {}
             }
             k += 1;
@@ -669,15 +688,55 @@ impl<'a> Interp<'a> {
             }
             Head::Object { .. } => {
                 c.list_goes_on = list_goes_on(chunks, k);
-                self.object_np(c, np, chunk, next_is_verb)
+                self.object_np(c, np, chunk, chunks.get(k + 1).map(|x| &x.item))
             }
         }
+    }
+
+    /// A past participle the lexicon has no verb for, read as a phrase that names nothing
+    /// ("each fitted with a sink").
+    pub(super) fn participle(&self, chunk: &Chunk) -> bool {
+        let Item::Np(np) = &chunk.item else {
+            return false;
+        };
+        chunk.range.len() == 1
+            && !matches!(np.head, Head::Object { .. } | Head::Room { .. })
+            && self.tokens[chunk.range.start].text.ends_with("ed")
+    }
+
+    /// "plus", "as well as", "along with": a conjunction that adds to the whole, never one
+    /// that continues a list (the "and" of "a chair, a lamp, and a vase").
+    fn additive(&self, chunk: &Chunk) -> bool {
+        let words: Vec<&str> = self.tokens[chunk.range.clone()]
+            .iter()
+            .map(|t| t.text.as_str())
+            .collect();
+        matches!(
+            words.as_slice(),
+            ["plus"] | ["as", "well", "as"] | ["along", "with"] | ["together", "with"]
+        )
     }
 
     /// A phrase read as no object whose head word is the last word of a room of the house
     /// ("suites" for "guest suite 1"), as a phrase naming that room.
     fn listed_room_word(&self, np: &Np, chunk: &Chunk) -> Option<Np> {
-        if self.scope != Scope::House || !matches!(np.head, Head::NonObject) {
+        if self.scope != Scope::House {
+            return None;
+        }
+        // "Each sleeping pod has ...": a thing's noun that a room of the house was made of.
+        if let Head::Object { noun, entry, .. } = &np.head {
+            let r = self
+                .rooms
+                .iter()
+                .find(|r| entry.is_none() && r.words == *noun && r.room_type == "room")?;
+            let mut room = np.clone();
+            room.head = Head::Room {
+                key: r.room_type.clone(),
+                words: r.words.clone(),
+            };
+            return Some(room);
+        }
+        if !matches!(np.head, Head::NonObject) {
             return None;
         }
         let last = self.tokens.get(chunk.range.end.checked_sub(1)?)?;
@@ -879,7 +938,11 @@ impl<'a> Interp<'a> {
                 // "Each private office has ...": the same contents in every such room.
                 let same: Vec<usize> = (0..self.rooms.len())
                     .filter(|&i| {
-                        i != self.room && self.rooms[i].room_type == self.rooms[self.room].room_type
+                        let (r, cur) = (&self.rooms[i], &self.rooms[self.room]);
+                        // Rooms of no known type are the same kind by their words.
+                        i != self.room
+                            && r.room_type == cur.room_type
+                            && (r.room_type != "room" || r.words == cur.words)
                     })
                     .collect();
                 let span = self

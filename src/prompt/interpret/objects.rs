@@ -2,7 +2,7 @@
 //! count, and how the clause's holder relates it (on, in, with, per parent, per setting).
 
 use super::{Clause, Ctx, Interp, Intro, Ref, is_plural_count};
-use crate::prompt::chunk::{Chunk, Head, Np, Pronoun};
+use crate::prompt::chunk::{Chunk, Head, Item, Np, Pronoun};
 use crate::prompt::mentions::{Count, GroupKind, Mention, Per, phrase_count};
 use crate::prompt::relations::{Relation, RelationKind, Target, normalize};
 use crate::words::lexicon::Support;
@@ -116,7 +116,14 @@ impl Interp<'_> {
         }
     }
 
-    pub(super) fn object_np(&mut self, c: &mut Clause, np: &Np, chunk: &Chunk, next_is_verb: bool) {
+    pub(super) fn object_np(
+        &mut self,
+        c: &mut Clause,
+        np: &Np,
+        chunk: &Chunk,
+        next: Option<&Item>,
+    ) {
+        let next_is_verb = matches!(next, Some(Item::Verb(..)));
         if c.after_sep
             && c.sep_was_comma
             && np.has_det()
@@ -156,6 +163,14 @@ impl Interp<'_> {
                     self.tokens[chunk.range.start].start,
                     self.tokens[chunk.range.end - 1].end,
                 ];
+        if !is_new
+            && c.pending.is_none()
+            && np.det.as_deref() == Some("each")
+            && is_plural_count(self.mentions[r.m].count)
+            && self.each_refers_back(c, &r, next)
+        {
+            return;
+        }
         if let Some(p) = c.pending.take() {
             if p.class == "surrounded_by" || p.class == "flanked_by" {
                 // Inverse: the new phrase surrounds the attach set.
@@ -297,7 +312,9 @@ impl Interp<'_> {
         if c.negate && !np.negated && np.quant.as_deref() == Some("exactly") {
             c.negate = false;
         }
-        if c.negate || np.negated {
+        // "no television, because the aquarium is the entertainment": a negation's scope
+        // does not reach back to a thing already named.
+        if (c.negate && (is_new || !np.is_definite())) || np.negated {
             self.mentions[r.m].negated = true;
         }
         if np.negated {
@@ -326,6 +343,32 @@ impl Interp<'_> {
         c.last_np = vec![r];
         c.last_prep_obj = None;
         c.after_sep = false;
+    }
+
+    /// "Each desk has a monitor", ", each desk with a chair and a monitor": "each" and a noun
+    /// already counted; what the desk has or comes with is per desk. True when the phrase was
+    /// taken that way.
+    fn each_refers_back(&mut self, c: &mut Clause, r: &Ref, next: Option<&Item>) -> bool {
+        match next {
+            Some(Item::With) => {
+                c.ctx = Ctx::Each(vec![r.clone()]);
+                c.stack.clear();
+                c.stack.push(Ctx::Room);
+                c.each_with = true;
+                c.after_sep = false;
+                c.last_np = vec![r.clone()];
+                true
+            }
+            Some(Item::Verb(..)) if c.verb.is_none() && matches!(c.ctx, Ctx::Room) => {
+                c.subject = vec![r.clone()];
+                c.focus = vec![r.clone()];
+                c.each_subject = true;
+                c.last_np = vec![r.clone()];
+                c.after_sep = false;
+                true
+            }
+            _ => false,
+        }
     }
 
     /// True when `np` names the same noun as mention `m` (same canonical or same head word).
@@ -530,7 +573,13 @@ impl Interp<'_> {
                     })
                 })
         };
-        if definite && let Some(m) = existing(self) {
+        // "sixteen desks ..., each desk with a chair": "each" over things already counted
+        // refers back to them.
+        let each_back = matches!(np.det.as_deref(), Some("each"))
+            && existing(self).is_some_and(|m| is_plural_count(self.mentions[m].count));
+        if (definite || each_back)
+            && let Some(m) = existing(self)
+        {
             let a = np.attrs.clone();
             self.mentions[m].attributes.merge(&a);
             return Ref {
