@@ -297,6 +297,13 @@ fn introduced_rooms(chunks: &[Chunk], in_house: bool) -> Vec<&Np> {
 /// of a Mongolian ger, ..." a room called "ger". The first sentence's chunks are rewritten:
 /// the room phrase becomes a room, the building around it names no object.
 pub(crate) fn room_named_by_part(lex: &Lexicon, tokens: &[Token], first: &mut [Chunk]) {
+    let last_word = |r: &std::ops::Range<usize>| {
+        tokens[r.clone()]
+            .iter()
+            .rev()
+            .find(|t| t.is_word())
+            .map(|t| lex.singular(&t.text))
+    };
     // "The inside of a ger": "inside of" reads as a preposition after a bare "the".
     if let [a, prep, b, ..] = &mut *first
         && matches!(prep.item, Item::Prep(_))
@@ -308,25 +315,8 @@ pub(crate) fn room_named_by_part(lex: &Lexicon, tokens: &[Token], first: &mut [C
         && let Item::Np(whole) = &mut b.item
         && !matches!(whole.head, Head::Room { .. })
     {
-        let words = match &whole.head {
-            Head::Object { noun, .. } => Some(noun.clone()),
-            Head::NonObject => whole.report.as_ref().map(|r| r.noun.clone()),
-            _ => None,
-        };
-        let words = words.or_else(|| {
-            tokens[b.range.clone()]
-                .iter()
-                .rev()
-                .find(|t| t.is_word())
-                .map(|t| lex.singular(&t.text))
-        });
-        if let Some(words) = words {
-            let reg = crate::knowledge::knowledge();
-            let head = words.rsplit(' ').next().unwrap_or(&words).to_string();
-            let key =
-                crate::words::ground::room_family(&head, &|n: &str| reg.room_type_of(n).is_some())
-                    .and_then(|f| reg.room_type_of(&f.noun).map(str::to_string))
-                    .unwrap_or_else(|| "room".to_string());
+        if let Some(words) = phrase_noun(whole).or_else(|| last_word(&b.range)) {
+            let key = room_type_of_noun(&words);
             whole.head = Head::Room { key, words };
             // The room is what the "of" phrase names, not a place where something is.
             prep.item = Item::Of;
@@ -343,33 +333,12 @@ pub(crate) fn room_named_by_part(lex: &Lexicon, tokens: &[Token], first: &mut [C
     if part.det.as_deref() != Some("definite") || part.number.is_some() {
         return;
     }
-    let reg = crate::knowledge::knowledge();
-    let room_type = |words: &str| {
-        let head = words.rsplit(' ').next().unwrap_or(words);
-        crate::words::ground::room_family(head, &|n: &str| reg.room_type_of(n).is_some())
-            .and_then(|f| reg.room_type_of(&f.noun).map(str::to_string))
-            .unwrap_or_else(|| "room".to_string())
-    };
-    let last_word = |r: &std::ops::Range<usize>| {
-        tokens[r.clone()]
-            .iter()
-            .rev()
-            .find(|t| t.is_word())
-            .map(|t| lex.singular(&t.text))
-    };
-    // The noun a phrase names, read as a thing or not ("command bridge" is rarely one).
-    let noun_of = |np: &Np| match &np.head {
-        Head::Object { noun, .. } => Some(noun.clone()),
-        Head::Room { words, .. } => Some(words.clone()),
-        Head::NonObject => np.report.as_ref().map(|r| r.noun.clone()),
-        _ => None,
-    };
     let inside = last_word(&a.range).is_some_and(|w| matches!(w.as_str(), "inside" | "interior"));
     if inside {
         if !matches!(whole.head, Head::Room { .. })
-            && let Some(words) = noun_of(whole).or_else(|| last_word(&b.range))
+            && let Some(words) = phrase_noun(whole).or_else(|| last_word(&b.range))
         {
-            let key = room_type(&words);
+            let key = room_type_of_noun(&words);
             whole.head = Head::Room { key, words };
         }
         part.head = Head::NonObject;
@@ -378,13 +347,33 @@ pub(crate) fn room_named_by_part(lex: &Lexicon, tokens: &[Token], first: &mut [C
     if matches!(part.head, Head::Room { .. }) {
         return;
     }
-    if let (Some(words), Some(whole_words)) = (noun_of(part), noun_of(whole))
+    if let (Some(words), Some(whole_words)) = (phrase_noun(part), phrase_noun(whole))
         && crate::words::ground::can_be_building(&whole_words)
     {
-        let key = room_type(&words);
+        let key = room_type_of_noun(&words);
         part.head = Head::Room { key, words };
         whole.head = Head::NonObject;
     }
+}
+
+/// The noun a phrase names, read as a thing or not ("command bridge" is rarely one).
+fn phrase_noun(np: &Np) -> Option<String> {
+    match &np.head {
+        Head::Object { noun, .. } => Some(noun.clone()),
+        Head::Room { words, .. } => Some(words.clone()),
+        Head::NonObject => np.report.as_ref().map(|r| r.noun.clone()),
+        _ => None,
+    }
+}
+
+/// The room type of a noun the registry may not know: the nearest type along the WordNet
+/// hypernyms of its last word, else the generic `room`.
+fn room_type_of_noun(words: &str) -> String {
+    let reg = crate::knowledge::knowledge();
+    let head = words.rsplit(' ').next().unwrap_or(words);
+    crate::words::ground::room_family(head, &|n: &str| reg.room_type_of(n).is_some())
+        .and_then(|f| reg.room_type_of(&f.noun).map(str::to_string))
+        .unwrap_or_else(|| "room".to_string())
 }
 
 /// The sentence, among the first few, that lists the rooms: rooms after "with", a
@@ -557,7 +546,6 @@ fn coerced_rooms(lex: &Lexicon, items: &[Chunk]) -> Vec<(usize, Np)> {
     if rooms < 2 {
         return Vec::new();
     }
-    let reg = crate::knowledge::knowledge();
     let mut out = Vec::new();
     let mut in_with = false;
     let mut after_prep = false;
@@ -576,11 +564,7 @@ fn coerced_rooms(lex: &Lexicon, items: &[Chunk]) -> Vec<(usize, Np)> {
                             .is_some_and(|i| i.roomlike)
                             || (entry.is_none() && rooms >= 3);
                         if roomlike {
-                            let key = crate::words::ground::room_family(head, &|n: &str| {
-                                reg.room_type_of(n).is_some()
-                            })
-                            .and_then(|f| reg.room_type_of(&f.noun).map(str::to_string))
-                            .unwrap_or_else(|| "room".to_string());
+                            let key = room_type_of_noun(head);
                             let mut room = (**np).clone();
                             room.head = Head::Room {
                                 key,

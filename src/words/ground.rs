@@ -155,18 +155,22 @@ pub fn rules() -> &'static Rules {
     )
 }
 
+/// The WordNet lemma of `words`, else of its last word.
+fn lemma_or_last(words: &str) -> Option<String> {
+    let last = words.rsplit(' ').next().unwrap_or(words);
+    noun_lemma(words).or_else(|| noun_lemma(last))
+}
+
 /// Whether some sense of `words` (or of its last word) is a whole building or ship: "vessel"
 /// of "the bridge of a research vessel", which is a container too.
 pub fn can_be_building(words: &str) -> bool {
-    let wn = wordnet();
     let r = rules();
-    let last = words.rsplit(' ').next().unwrap_or(words);
-    let Some(lemma) = noun_lemma(words).or_else(|| noun_lemma(last)) else {
-        return false;
-    };
-    wn.noun_senses(&lemma)
-        .iter()
-        .any(|s| r.under_any(s.synset, &r.building_under))
+    lemma_or_last(words).is_some_and(|lemma| {
+        wordnet()
+            .noun_senses(&lemma)
+            .iter()
+            .any(|s| r.under_any(s.synset, &r.building_under))
+    })
 }
 
 /// Whether every room-like or physical sense of `words` is a whole building or ship ("hostel",
@@ -174,8 +178,7 @@ pub fn can_be_building(words: &str) -> bool {
 pub fn is_building(words: &str) -> bool {
     let wn = wordnet();
     let r = rules();
-    let last = words.rsplit(' ').next().unwrap_or(words);
-    let Some(lemma) = noun_lemma(words).or_else(|| noun_lemma(last)) else {
+    let Some(lemma) = lemma_or_last(words) else {
         return false;
     };
     let senses: Vec<SynsetId> = wn
