@@ -364,7 +364,9 @@ pub(crate) fn modifier_at(
                 && (lex.noun_at(tokens, at + 1).is_some()
                     || wn.has_pos(&u.text, crate::words::wordnet::Pos::Noun))
         });
-    if w.contains('-')
+    // "wall-mounted", "king-size"; not "fridge-freezer", two nouns of the lexicon.
+    let hyphen_noun = w.contains('-') && lex.noun_at_most(tokens, at, 1).is_some();
+    if (w.contains('-') && !hyphen_noun)
         || (w.len() > 4 && w.ends_with("ed") && !noun_lemma)
         || (w.len() > 5 && w.ends_with("ing") && next_wordish && !noun_lemma)
     {

@@ -173,6 +173,11 @@ pub fn read(prompt: &str) -> Reading {
             }
         }
     }
+    if st.scope == Scope::House {
+        for sentence in &mut chunks {
+            rooms::each_by_head(lex, &st.rooms, sentence);
+        }
+    }
     let mut it = interpret::Interp::new(lex, &toks, st.rooms.clone(), st.scope);
     // The room list's phrases are rooms; what they hold ("a meeting room with a long table")
     // goes in them.

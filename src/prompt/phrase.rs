@@ -225,7 +225,7 @@ pub(crate) fn parse_np(
 }
 
 /// A phrase with no words read yet.
-fn blank_np() -> Np {
+pub(crate) fn blank_np() -> Np {
     Np {
         det: None,
         quant: None,
@@ -594,7 +594,9 @@ impl<'a> Phrase<'a> {
     /// noun, tried in that order; sets it on `np` and returns the index after the phrase.
     fn read_head(&self, np: &mut Np, before: &BeforeHead) -> Option<usize> {
         let (lex, tokens, j) = (self.lex, self.tokens, before.j);
-        let w = self.at(j)?;
+        let Some(w) = self.at(j) else {
+            return self.material_as_head(np, before);
+        };
         let noun = agree(lex, np, tokens, j, self.end);
         let room = self
             .kb
@@ -633,12 +635,44 @@ impl<'a> Phrase<'a> {
         {
             return Some(next);
         }
+        if let Some(next) = self.material_as_head(np, before) {
+            return Some(next);
+        }
         if j > self.start && (before.evidence || !np.attrs.modifiers.is_empty()) {
             // Only modifiers ("leather and metal accents": "leather" alone).
             np.head = Head::NonObject;
             return Some(j);
         }
         None
+    }
+
+    /// "the iron resting on it", "an iron": a material word after a determiner with no noun
+    /// after it is the noun itself, grounded like any other (WordNet's iron is also an
+    /// appliance); "leather and metal accents" has no determiner and keeps "leather" a material.
+    fn material_as_head(&self, np: &mut Np, before: &BeforeHead) -> Option<usize> {
+        let j = before.j;
+        let last = j.checked_sub(1).filter(|&k| k >= before.mods_from)?;
+        let w = self.at(last)?;
+        let mat = self.lex.material(w)?;
+        let presented = np.det.as_deref().is_some_and(|d| d != "possessive") || np.number.is_some();
+        if !presented || np.attrs.materials.last().map(String::as_str) != Some(mat) {
+            return None;
+        }
+        let mut trial = np.clone();
+        trial.attrs.materials.pop();
+        trial.attrs.modifiers.pop();
+        let at = BeforeHead {
+            j: last,
+            mods_from: before.mods_from,
+            which: before.which.clone(),
+            evidence: true,
+        };
+        let next = self.open_vocabulary_head(&mut trial, &at)?;
+        if !matches!(trial.head, Head::Object { .. }) {
+            return None;
+        }
+        *np = trial;
+        Some(next)
     }
 
     /// A lone one-word noun that is often something else ("light"), or a predicate, with
@@ -789,8 +823,29 @@ impl<'a> Phrase<'a> {
         if !plural && let Some(next) = self.compound_tail_head(np, start, n) {
             return next;
         }
-        // A part noun with an ordinal or "top": "the top shelf", "the second shelf".
+        // "glass doors", "a brick wall": a material noun before a part of the building is
+        // what that part is made of, not a thing of its own.
         let head_word = self.tokens[start + n - 1].text.as_str();
+        if n == 1
+            && !plural
+            && let Some(mat) = self.lex.material(head_word)
+            && let Some(next) = self.at(start + 1)
+            && self.lex.landmark(next).is_some()
+            && self.lex.noun_at(self.tokens, start + 1).is_none()
+        {
+            np.attrs.materials.push(mat.to_string());
+            np.attrs.modifiers.push(self.tokens[start].raw.clone());
+            let at = BeforeHead {
+                j: start + 1,
+                mods_from: before.mods_from,
+                which: before.which.clone(),
+                evidence: before.evidence,
+            };
+            if let Some(k) = self.landmark_part_or_setting_head(np, &at, next) {
+                return k;
+            }
+        }
+        // A part noun with an ordinal or "top": "the top shelf", "the second shelf".
         if (np.ordinal.is_some() || before.which.is_some())
             && self
                 .lex

@@ -356,6 +356,47 @@ pub(crate) fn room_named_by_part(lex: &Lexicon, tokens: &[Token], first: &mut [C
     }
 }
 
+/// "Each cell has ..." after "six monks' cells": a word the chunker could not read as a
+/// phrase, after "each", that is the head noun of a room of no known type, names those rooms.
+pub(crate) fn each_by_head(lex: &Lexicon, rooms: &[RoomReading], sentence: &mut Vec<Chunk>) {
+    let mut k = 0;
+    while k + 1 < sentence.len() {
+        if let (Item::Each, Item::Other(w)) = (&sentence[k].item, &sentence[k + 1].item) {
+            let w = lex.singular(w);
+            let room = rooms
+                .iter()
+                .find(|r| r.room_type == "room" && head_names(&r.words, &w));
+            if let Some(r) = room {
+                let np = Np {
+                    det: Some("each".to_string()),
+                    head: Head::Room {
+                        key: r.room_type.clone(),
+                        words: r.words.clone(),
+                    },
+                    ..crate::prompt::phrase::blank_np()
+                };
+                let range = sentence[k].range.start..sentence[k + 1].range.end;
+                sentence.splice(
+                    k..k + 2,
+                    [Chunk {
+                        item: Item::Np(Box::new(np)),
+                        range,
+                    }],
+                );
+            }
+        }
+        k += 1;
+    }
+}
+
+/// Whether `noun` is a room's words or their last word ("cell" of "monks cell").
+pub(crate) fn head_names(words: &str, noun: &str) -> bool {
+    words == noun
+        || words
+            .strip_suffix(noun)
+            .is_some_and(|rest| rest.ends_with(' '))
+}
+
 /// The noun a phrase names, read as a thing or not ("command bridge" is rarely one).
 fn phrase_noun(np: &Np) -> Option<String> {
     match &np.head {
@@ -554,7 +595,16 @@ fn coerced_rooms(lex: &Lexicon, items: &[Chunk]) -> Vec<(usize, Np)> {
             Item::Np(np) => {
                 match &np.head {
                     Head::Room { .. } => in_with = false,
-                    Head::Object { noun, entry, .. } if !in_with && !after_prep => {
+                    Head::Object { .. } | Head::NonObject if !in_with && !after_prep => {
+                        // A word read as no thing ("three nuns' cells": mostly biology) is a
+                        // room only by a room sense of its own.
+                        let (noun, unknown) = match &np.head {
+                            Head::Object { noun, entry, .. } => (noun, entry.is_none()),
+                            _ => match &np.report {
+                                Some(r) => (&r.noun, false),
+                                None => continue,
+                            },
+                        };
                         // "six stalls": the room words are singular.
                         let noun = super::phrase::singular_last(lex, noun);
                         let head = noun.rsplit(' ').next().unwrap_or(&noun);
@@ -562,7 +612,7 @@ fn coerced_rooms(lex: &Lexicon, items: &[Chunk]) -> Vec<(usize, Np)> {
                         // a room too ("..., a gym and four sleeping pods").
                         let roomlike = crate::words::ground::noun_info(head)
                             .is_some_and(|i| i.roomlike)
-                            || (entry.is_none() && rooms >= 3);
+                            || (unknown && rooms >= 3);
                         if roomlike {
                             let key = room_type_of_noun(head);
                             let mut room = (**np).clone();

@@ -1066,3 +1066,80 @@ fn a_negation_does_not_reach_back_or_past_a_reason() {
     );
     assert_eq!(find(&r, "toaster").noun, "toaster");
 }
+
+#[test]
+fn each_and_the_head_noun_of_counted_rooms_furnishes_every_one() {
+    let r = read(
+        "A convent with a chapel, a kitchen, a cloister and three nuns' cells. The kitchen has a stove. Each cell has a narrow bed and a lamp.",
+    );
+    let cabins: Vec<usize> = (0..r.rooms.len())
+        .filter(|&i| r.rooms[i].words.ends_with("cell"))
+        .collect();
+    assert_eq!(cabins.len(), 3, "{:?}", r.rooms);
+    let beds: Vec<usize> = r
+        .mentions
+        .iter()
+        .filter(|m| m.category == "bed")
+        .map(|m| m.room)
+        .collect();
+    assert_eq!(beds, cabins, "one bed in each cabin, none in the kitchen");
+}
+
+#[test]
+fn a_material_word_after_a_determiner_is_the_thing() {
+    // "iron" is a material in "an iron bed" and the thing in "the iron resting on it".
+    let r = read("A laundry room with an ironing board, and the iron resting on it.");
+    assert!(
+        r.mentions.iter().any(|m| m.noun == "iron"),
+        "{:?}",
+        r.mentions
+    );
+    let r = read("A bedroom with an iron bed.");
+    assert!(r.mentions.iter().all(|m| m.noun != "iron"));
+    // Without a determiner it stays a material.
+    let r = read("A loft with leather and metal accents and a sofa.");
+    assert!(r.mentions.iter().all(|m| m.noun != "leather"));
+}
+
+#[test]
+fn a_material_before_a_part_of_the_building_is_its_material() {
+    let r = read("A dining room with a tall cabinet with glass doors and a table.");
+    assert!(
+        r.mentions.iter().all(|m| m.category != "glass"),
+        "{:?}",
+        r.mentions
+    );
+    assert_eq!(find(&r, "cabinet").count, Count::Exactly(1));
+}
+
+#[test]
+fn two_hyphenated_lexicon_nouns_are_the_last_ones_kind() {
+    let r = read("A kitchen with a large fridge-freezer, a wall-mounted shelf and a sofa-bed.");
+    assert!(
+        r.mentions
+            .iter()
+            .any(|m| m.noun.ends_with("fridge-freezer"))
+    );
+    assert!(r.mentions.iter().any(|m| m.noun.ends_with("sofa-bed")));
+    // A hyphenated adjective still modifies.
+    assert!(r.mentions.iter().all(|m| m.noun != "wall-mounted"));
+}
+
+#[test]
+fn a_definite_phrase_naming_another_kind_is_another_thing() {
+    let r = read(
+        "A craft room. A sewing machine sits on a sturdy table. A pegboard hangs above the cutting table. The sturdy table is white.",
+    );
+    assert_eq!(
+        r.mentions.iter().filter(|m| m.category == "table").count(),
+        2,
+        "{:?}",
+        r.mentions
+    );
+    // The same kind, or no kind word, refers back.
+    let r = read("A study with a writing desk. A lamp stands on the desk.");
+    assert_eq!(
+        r.mentions.iter().filter(|m| m.category == "desk").count(),
+        1
+    );
+}

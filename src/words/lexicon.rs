@@ -352,7 +352,17 @@ impl Lexicon {
                 return Some((len, i, plural || any_plural));
             }
         }
-        None
+        // "a fridge-freezer", "a sofa-bed": two nouns the lexicon knows, joined by a hyphen,
+        // name a thing of the last one's kind.
+        let w = words_at(tokens, at, 1)?.first().copied()?;
+        let (first, last) = w.rsplit_once('-')?;
+        let known = |x: &str| {
+            self.entry_index(x)
+                .or_else(|| self.entry_index(&self.singular(x)))
+        };
+        known(first)?;
+        let i = known(last)?;
+        Some((1, i, self.is_plural(last) && !self.plurale_tantum(last)))
     }
 
     fn entry_plural_spelling(&self, _i: usize, raw: &str) -> bool {

@@ -723,12 +723,15 @@ impl<'a> Interp<'a> {
         if self.scope != Scope::House {
             return None;
         }
-        // "Each sleeping pod has ...": a thing's noun that a room of the house was made of.
+        // "Each sleeping pod has ...": a thing's noun that a room of the house was made of;
+        // "Each cell has ..." after "six monks' cells": its head noun.
         if let Head::Object { noun, entry, .. } = &np.head {
-            let r = self
-                .rooms
-                .iter()
-                .find(|r| entry.is_none() && r.words == *noun && r.room_type == "room")?;
+            let each = np.det.as_deref() == Some("each");
+            let r = self.rooms.iter().find(|r| {
+                entry.is_none()
+                    && r.room_type == "room"
+                    && (r.words == *noun || (each && rooms::head_names(&r.words, noun)))
+            })?;
             let mut room = np.clone();
             room.head = Head::Room {
                 key: r.room_type.clone(),
@@ -747,7 +750,7 @@ impl<'a> Interp<'a> {
         let r = self
             .rooms
             .iter()
-            .find(|r| r.words == w || r.words.ends_with(&format!(" {w}")))?;
+            .find(|r| rooms::head_names(&r.words, &w))?;
         let mut room = np.clone();
         room.head = Head::Room {
             key: r.room_type.clone(),

@@ -5,7 +5,7 @@ use super::{Clause, Ctx, Interp, Intro, Ref, is_plural_count};
 use crate::prompt::chunk::{Chunk, Head, Item, Np, Pronoun};
 use crate::prompt::mentions::{Count, GroupKind, Mention, Per, phrase_count};
 use crate::prompt::relations::{Relation, RelationKind, Target, normalize};
-use crate::words::lexicon::Support;
+use crate::words::lexicon::{Lexicon, Support};
 
 impl Interp<'_> {
     pub(super) fn pronoun_np(&mut self, c: &mut Clause, p: Pronoun) {
@@ -539,10 +539,20 @@ impl Interp<'_> {
             let kind_of = entry
                 .and_then(|e| me.lex.objects.get(e))
                 .and_then(|e| e.kind_of.clone());
-            me.recent(|m| m.category == *canonical, &[])
+            // "a sewing machine on a sturdy table ... the cutting table": a word naming a
+            // kind of the thing that the earlier one lacks names another one.
+            let kinds = kind_words(me.lex, noun);
+            let same_kind = |m: &Mention| {
+                let theirs: Vec<&str> = m.noun.split(' ').collect();
+                kinds.iter().all(|k| theirs.contains(&k.as_str()))
+            };
+            me.recent(|m| m.category == *canonical && same_kind(m), &[])
                 .or_else(|| {
                     me.recent(
-                        |m| last(&m.noun) == last(noun) || last(&m.category) == last(canonical),
+                        |m| {
+                            (last(&m.noun) == last(noun) || last(&m.category) == last(canonical))
+                                && same_kind(m)
+                        },
                         &[],
                     )
                 })
@@ -553,6 +563,7 @@ impl Interp<'_> {
                                 .lookup(&m.category)
                                 .and_then(|e| e.kind_of.as_deref())
                                 .is_some_and(|k| k == canonical.as_str())
+                                && same_kind(m)
                         },
                         &[],
                     )
@@ -567,6 +578,7 @@ impl Interp<'_> {
                                         .lookup(&m.category)
                                         .and_then(|e| e.kind_of.as_deref())
                                         == Some(k.as_str())
+                                    && same_kind(m)
                             },
                             &[],
                         )
@@ -674,4 +686,27 @@ impl Interp<'_> {
             part: None,
         }
     }
+}
+
+/// The words before the head of `noun` that name a kind of it ("cutting" of "cutting table",
+/// "dining" of "dining chair"): a gerund or a noun WordNet does not also read as an adjective;
+/// not a colour, material, size or style word.
+fn kind_words(lex: &Lexicon, noun: &str) -> Vec<String> {
+    let words: Vec<&str> = noun.split(' ').collect();
+    let Some((_, before)) = words.split_last() else {
+        return Vec::new();
+    };
+    before
+        .iter()
+        .filter(|w| {
+            let gerund = w.len() > 5 && w.ends_with("ing");
+            let noun_only =
+                crate::words::ground::is_noun(w) && !crate::words::ground::is_adjective(w);
+            (gerund || noun_only)
+                && lex.material(w).is_none()
+                && lex.size_adjective(w).is_none()
+                && !lex.is_function_word(w)
+        })
+        .map(|w| w.to_string())
+        .collect()
 }
