@@ -1143,3 +1143,13 @@ fn a_definite_phrase_naming_another_kind_is_another_thing() {
         1
     );
 }
+
+#[test]
+fn a_vague_number_of_pairs_is_a_vague_number_of_things() {
+    let r = read(
+        "A workshop with an anvil, several pairs of tongs, a pair of gloves and 3 pairs of boots.",
+    );
+    assert_eq!(find(&r, "tongs").count, Count::Several);
+    assert_eq!(find(&r, "glove").count, Count::Exactly(2));
+    assert_eq!(find(&r, "shoe").count, Count::Exactly(6));
+}

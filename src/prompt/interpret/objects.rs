@@ -492,7 +492,11 @@ impl Interp<'_> {
             np.det.as_deref(),
             np.plural,
         );
-        if np.group == Some(GroupKind::Pair) {
+        // "several pairs of tongs": a vague number of pairs is a vague number of things.
+        let vague = np.number.is_none()
+            && np.det.as_deref() != Some("indefinite")
+            && !matches!(count, Count::Exactly(_));
+        if np.group == Some(GroupKind::Pair) && !vague {
             let pairs = np.number.unwrap_or(1);
             // "heavy shears" reaches here singularised as "heavy shear".
             let tantum = noun.is_some_and(|n| {
