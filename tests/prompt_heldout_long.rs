@@ -276,7 +276,7 @@ fn reader_on_third_held_out_long_prompts() {
 /// The second development file (`tests/fixtures/devlong2.jsonl`, 40 prompts), written with
 /// the third held-out file by the same helper; the reader may be tuned on it. First run
 /// (commit a0f59cb): objects 87.7 %, absents 100 %, rooms 94.9 %; 91.0 %, 100 %, 98.0 % at
-/// dcd8e72; 91.9 %, 100 %, 98.0 % after the reader changes of 2026-11-30.
+/// dcd8e72; 92.1 %, 100 %, 98.0 % after the reader changes of 2026-11-30.
 #[test]
 fn reader_on_second_dev_long_prompts() {
     let s = score_file(

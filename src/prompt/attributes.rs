@@ -383,9 +383,14 @@ pub(crate) fn modifier_at(
         }) {
             n += 1;
         }
-        let followed = tokens
-            .get(at + n)
-            .is_some_and(|u| u.is_word() && !lex.is_function_word(&u.text));
+        // "a Bible lies on the table": a name followed by its verb is the thing itself.
+        let followed = tokens.get(at + n).is_some_and(|u| {
+            u.is_word()
+                && !lex.is_function_word(&u.text)
+                && (lex.verb(&u.text).is_none()
+                    || lex.noun_at(tokens, at + n).is_some()
+                    || kb.room_type_at(tokens, at + n).is_some())
+        });
         if followed {
             return Some(Modifier {
                 len: n,

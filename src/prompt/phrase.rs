@@ -1703,7 +1703,9 @@ fn open_head(
     // A rarely physical noun is a thing where the sentence places it and the phrase names
     // several of them or a kind of it, not one it already knows ("shelves hold catalogues",
     // "a microfilm reader in the corner"; not "under a sloping roof", "in the hills").
-    let plural_or_kind = name.len() >= 2 || lex.is_plural(last);
+    // "a lectern holding a great Bible": a capitalised noun inside the phrase names a kind.
+    let named = k > phrase_start + 1 && tokens.get(k - 1).is_some_and(|t| t.capitalized());
+    let plural_or_kind = name.len() >= 2 || lex.is_plural(last) || named;
     let known = matches!(np.det.as_deref(), Some("definite" | "possessive"));
     let evidence = if evidence == Evidence::Strong
         && plural_or_kind
