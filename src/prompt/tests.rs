@@ -19,6 +19,20 @@ fn index(r: &Reading, cat: &str) -> usize {
     r.mentions.iter().position(|m| m.category == cat).unwrap()
 }
 
+/// How many mentions of category `cat` the reading has.
+fn mentions_of(r: &Reading, cat: &str) -> usize {
+    r.mentions.iter().filter(|m| m.category == cat).count()
+}
+
+/// The room of each mention of category `cat`, in order.
+fn rooms_of(r: &Reading, cat: &str) -> Vec<usize> {
+    r.mentions
+        .iter()
+        .filter(|m| m.category == cat)
+        .map(|m| m.room)
+        .collect()
+}
+
 /// The relation of `cat` of `kind`, with its target rendered as a noun or landmark name.
 fn rel(r: &Reading, cat: &str, kind: RelationKind) -> Option<String> {
     find(r, cat)
@@ -74,10 +88,7 @@ fn count_forms() {
     assert_eq!(find(&r, "jar").count, Count::Exactly(1));
     // "in total" sets the count of the earlier phrase.
     let r = read("There is a shelf with stacks of books, at least 15 books in total.");
-    assert_eq!(
-        r.mentions.iter().filter(|m| m.category == "book").count(),
-        1
-    );
+    assert_eq!(mentions_of(&r, "book"), 1);
     assert_eq!(find(&r, "book").count, Count::AtLeast(15));
 }
 
@@ -408,21 +419,11 @@ fn rooms_from_grammar_and_wordnet() {
     assert_eq!(find(&r, "table").room, 1);
     assert_eq!(find(&r, "bookshelf").room, 2);
     let r = read("A guest house with three guest rooms, each with a double bed, and a lounge.");
-    let beds: Vec<usize> = r
-        .mentions
-        .iter()
-        .filter(|m| m.category == "bed")
-        .map(|m| m.room)
-        .collect();
+    let beds = rooms_of(&r, "bed");
     assert_eq!(beds, [0, 1, 2]);
     // A word that names listed rooms by their head ("Both suites").
     let r = read("A hotel floor with a corridor and two guest suites. Both suites have a sofa.");
-    let sofas: Vec<usize> = r
-        .mentions
-        .iter()
-        .filter(|m| m.category == "sofa")
-        .map(|m| m.room)
-        .collect();
+    let sofas = rooms_of(&r, "sofa");
     assert_eq!(sofas, [1, 2]);
     // In a house, rooms named as a preposition's object are rooms of it.
     let r = read(
@@ -731,7 +732,7 @@ fn an_animal_made_as_a_thing_is_one_and_no_longer_negates() {
     assert!(r.mentions.iter().all(|m| m.noun != "cat"));
     let r = read("A radio sits on the bench, though there is no longer a car in here.");
     assert!(find(&r, "car").negated);
-    assert_eq!(r.mentions.iter().filter(|m| m.category == "car").count(), 1);
+    assert_eq!(mentions_of(&r, "car"), 1);
 }
 
 #[test]
@@ -978,10 +979,7 @@ fn each_and_a_counted_noun_refers_back() {
     let r =
         read("The open office has sixteen desks, each desk with an office chair and a monitor.");
     assert_eq!(r.total(index(&r, "office chair")), Count::Exactly(16));
-    assert_eq!(
-        r.mentions.iter().filter(|m| m.category == "desk").count(),
-        1
-    );
+    assert_eq!(mentions_of(&r, "desk"), 1);
     // A participle the verb table lacks still leads into the per-parent list.
     let r = read(
         "Two long benches run the length of the room, each fitted with a sink and four stools.",
@@ -1028,12 +1026,7 @@ fn unknown_list_items_among_rooms_are_rooms() {
         .filter(|&i| r.rooms[i].words == "sleeping pod")
         .collect();
     assert_eq!(pods.len(), 4);
-    let bunks: Vec<usize> = r
-        .mentions
-        .iter()
-        .filter(|m| m.category == "bunk")
-        .map(|m| m.room)
-        .collect();
+    let bunks = rooms_of(&r, "bunk");
     assert_eq!(bunks, pods, "one bunk in each pod, none in the airlock");
     // Plural list items take singular room words.
     let r = read("The stable block has six stalls, a tack room, a feed room and a wash bay.");
@@ -1076,12 +1069,7 @@ fn each_and_the_head_noun_of_counted_rooms_furnishes_every_one() {
         .filter(|&i| r.rooms[i].words.ends_with("cell"))
         .collect();
     assert_eq!(cabins.len(), 3, "{:?}", r.rooms);
-    let beds: Vec<usize> = r
-        .mentions
-        .iter()
-        .filter(|m| m.category == "bed")
-        .map(|m| m.room)
-        .collect();
+    let beds = rooms_of(&r, "bed");
     assert_eq!(beds, cabins, "one bed in each cabin, none in the kitchen");
 }
 
@@ -1130,18 +1118,10 @@ fn a_definite_phrase_naming_another_kind_is_another_thing() {
     let r = read(
         "A craft room. A sewing machine sits on a sturdy table. A pegboard hangs above the cutting table. The sturdy table is white.",
     );
-    assert_eq!(
-        r.mentions.iter().filter(|m| m.category == "table").count(),
-        2,
-        "{:?}",
-        r.mentions
-    );
+    assert_eq!(mentions_of(&r, "table"), 2, "{:?}", r.mentions);
     // The same kind, or no kind word, refers back.
     let r = read("A study with a writing desk. A lamp stands on the desk.");
-    assert_eq!(
-        r.mentions.iter().filter(|m| m.category == "desk").count(),
-        1
-    );
+    assert_eq!(mentions_of(&r, "desk"), 1);
 }
 
 #[test]
@@ -1159,12 +1139,7 @@ fn a_capitalised_rarely_physical_noun_that_the_sentence_places_is_a_thing() {
     // "Bible" names a thing in 4 % of WordNet's uses: a capitalised one on a lectern is one.
     let r =
         read("A small chapel with a lectern holding a great Bible, and a Bible lies on the altar.");
-    assert_eq!(
-        r.mentions.iter().filter(|m| m.category == "bible").count(),
-        2,
-        "{:?}",
-        r.mentions
-    );
+    assert_eq!(mentions_of(&r, "bible"), 2, "{:?}", r.mentions);
     // A name before its verb is no theme of the next phrase.
     let r = read("A den where a Bible lies on the table.");
     assert!(r.mentions.iter().any(|m| m.category == "bible"));
