@@ -184,7 +184,9 @@ pub fn read(prompt: &str) -> Reading {
     for ch in &chunks {
         it.sentence(ch);
     }
-    let (mentions, mut rooms) = finish(lex, &toks, prompt, it);
+    let (mut mentions, mut rooms) = finish(lex, &toks, prompt, it);
+    let mut nouns = noun_reports(&chunks);
+    senses_in_company(lex, &mut mentions, &mut nouns);
     // Density: strong words anywhere apply to every room; the room phrase's own words too.
     let density = toks
         .iter()
@@ -217,9 +219,55 @@ pub fn read(prompt: &str) -> Reading {
         house_type: st.house_type,
         styles: st.styles,
         density,
-        nouns: noun_reports(&chunks),
+        nouns,
         notes: st.notes,
         english_share: english_share(lex, &toks),
+    }
+}
+
+/// Open-vocabulary things whose sense the other things of the prompt choose: "an iron" beside
+/// a sewing machine and an ironing board is a smoothing iron, not the golf club the word
+/// alone is built as. The mention is renamed to the chosen sense's own lemma, which the asset
+/// router grounds the same way, and takes that sense's family (or none: a stand-in).
+fn senses_in_company(lex: &Lexicon, mentions: &mut [Mention], nouns: &mut [NounReport]) {
+    let mut company: Vec<String> = Vec::new();
+    for m in mentions.iter().filter(|m| !m.negated) {
+        if !company.contains(&m.category) {
+            company.push(m.category.clone());
+        }
+    }
+    let company: Vec<&str> = company.iter().map(String::as_str).collect();
+    let known = |n: &str| lex.lookup(n).is_some();
+    for m in mentions.iter_mut().filter(|m| !m.known) {
+        let Some(sense) = crate::words::ground::sense_in_company(&m.category, &company, &known)
+        else {
+            continue;
+        };
+        let entry = sense.family.as_ref().and_then(|f| lex.lookup(&f.noun));
+        if m.parent().is_none() {
+            m.support = entry.map_or(m.support, |e| e.support);
+        }
+        m.container = entry.is_some_and(|e| e.container);
+        for r in nouns.iter_mut().filter(|r| r.noun == m.category) {
+            r.lemma = Some(sense.lemma.clone());
+            r.family = entry.map(|e| e.noun.clone());
+            r.status = if entry.is_some() {
+                NounStatus::Routed
+            } else {
+                NounStatus::StandIn
+            };
+            r.reason = Some(format!(
+                "read as {} by the things around it{}",
+                sense.lemma,
+                sense
+                    .family
+                    .as_ref()
+                    .map(|f| format!("; WordNet: {}", f.via.join(" > ")))
+                    .unwrap_or_default()
+            ));
+        }
+        m.head = entry.map(|e| e.noun.clone());
+        m.category = sense.lemma;
     }
 }
 

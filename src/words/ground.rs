@@ -465,6 +465,102 @@ pub fn family(words: &str, known: &dyn Fn(&str) -> bool) -> Option<Family> {
     })
 }
 
+/// Hypernym steps within which two senses keep company: siblings and cousins ("smoothing
+/// iron" and "sewing machine" are both home appliances).
+const COMPANY_STEPS: u32 = 2;
+
+/// A sense and its hypernyms up to [`COMPANY_STEPS`] links away, short of the `family_stop`
+/// synsets (everything is an artifact: that is no company).
+fn near_kin(s: SynsetId) -> HashSet<SynsetId> {
+    let wn = wordnet();
+    let stop = &rules().family_stop;
+    let mut out = HashSet::new();
+    let mut frontier = vec![s];
+    for _ in 0..=COMPANY_STEPS {
+        let mut next = Vec::new();
+        for x in frontier {
+            if !stop.contains(&x) && out.insert(x) {
+                next.extend_from_slice(wn.hypernyms(x));
+            }
+        }
+        frontier = next;
+    }
+    out
+}
+
+/// A noun's sense as the other things of its text choose it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SenseInCompany {
+    /// A lemma of the chosen sense that ends in the noun and names no other placeable thing
+    /// ("smoothing iron").
+    pub lemma: String,
+    /// The family the chosen sense is built as, if any is near.
+    pub family: Option<Family>,
+}
+
+/// The placeable sense of `words` that the other things of its text (`company`: their
+/// nouns) keep company with, when it is not the sense the noun is built as by itself.
+///
+/// A sense's support is the number of company nouns whose main sense (their heaviest
+/// placeable one) lies within a few hypernym links of it (word-sense choice by conceptual neighbourhood): in a sewing room with a sewing
+/// machine, "iron" is the smoothing iron, a home appliance like the machine, not the golf
+/// club its first sense would build. `None` when no one sense has more support than each other,
+/// when the supported senses build the same family as the noun alone, or when no lemma of
+/// the chosen sense ends in the noun's own last word and names it alone (the name of the
+/// object must still say what the prompt said).
+pub fn sense_in_company(
+    words: &str,
+    company: &[&str],
+    known: &dyn Fn(&str) -> bool,
+) -> Option<SenseInCompany> {
+    let info = noun_info(words)?;
+    if info.placeable.len() < 2 {
+        return None;
+    }
+    let kin_of_company: Vec<HashSet<SynsetId>> = company
+        .iter()
+        .filter(|c| noun_lemma(c).as_deref() != Some(info.lemma.as_str()))
+        .filter_map(|c| noun_info(c)?.placeable.first().copied())
+        .map(near_kin)
+        .collect();
+    let support: Vec<usize> = info
+        .placeable
+        .iter()
+        .map(|&s| {
+            let kin = near_kin(s);
+            kin_of_company
+                .iter()
+                .filter(|c| !c.is_disjoint(&kin))
+                .count()
+        })
+        .collect();
+    let best = support.iter().copied().max().unwrap_or(0);
+    if best == 0 {
+        return None;
+    }
+    let mut at_best = info
+        .placeable
+        .iter()
+        .zip(&support)
+        .filter(|&(_, &n)| n == best);
+    let (Some((&chosen, _)), None) = (at_best.next(), at_best.next()) else {
+        return None;
+    };
+    let family = nearest(&info.lemma, &[chosen], known);
+    let alone = nearest(&info.lemma, &info.placeable, known);
+    if family.as_ref().map(|f| &f.noun) == alone.as_ref().map(|f| &f.noun) {
+        return None;
+    }
+    let last = info.lemma.rsplit(' ').next().unwrap_or(&info.lemma);
+    let suffix = format!(" {last}");
+    let wn = wordnet();
+    let lemma = wn
+        .lemmas(chosen)
+        .map(|l| l.replace('_', " "))
+        .find(|l| l.ends_with(&suffix) && noun_info(l).is_some_and(|i| i.placeable == [chosen]))?;
+    Some(SenseInCompany { lemma, family })
+}
+
 /// The nearest room word `known` accepts along the hypernyms of the room-like senses of
 /// `words` ("bakehouse" -> "bakery", "pantry" -> "storeroom").
 pub fn room_family(words: &str, known: &dyn Fn(&str) -> bool) -> Option<Family> {
@@ -554,6 +650,23 @@ mod tests {
         assert!(family("unease", &known).is_none());
         // Never above the stop synsets: nothing is a kind of "artifact" here.
         assert!(family("chandelier", &|n: &str| n == "artifact").is_none());
+    }
+
+    #[test]
+    fn the_company_chooses_the_sense() {
+        let known = |n: &str| n == "golf club";
+        // Alone, an iron is built as its golf-club sense.
+        assert_eq!(family("iron", &known).unwrap().noun, "golf club");
+        // Beside a sewing machine it is a smoothing iron, a home appliance like the machine,
+        // with no family near: a stand-in called by its own name.
+        let s = sense_in_company("iron", &["sewing machine", "iron", "quilt"], &known).unwrap();
+        assert_eq!(s.lemma, "smoothing iron");
+        assert!(s.family.is_none());
+        // Company that supports the sense it is built as anyway changes nothing, nor does
+        // company that supports no sense, nor a word with one placeable sense.
+        assert!(sense_in_company("iron", &["putter"], &known).is_none());
+        assert!(sense_in_company("iron", &["quilt", "armchair"], &known).is_none());
+        assert!(sense_in_company("samovar", &["sewing machine"], &known).is_none());
     }
 
     #[test]

@@ -487,6 +487,8 @@ fn route_uncached(request: &RouteRequest, ctx: &RouterContext) -> Result<Routed,
             main.unknown_noun = Some(cat.clone());
             main.categories.clear();
             main.noun = None;
+            // Built as itself: not as the family of the description's own noun.
+            main.family = None;
         } else {
             main.categories = p.categories;
             main.noun = p.noun;
