@@ -205,3 +205,38 @@ fn lounge_seating_is_no_seat_at_a_set_table() {
     assert_eq!(at_table, 6, "{plan:#?}");
     assert_eq!(plan.count_of("armchair"), 2);
 }
+
+#[test]
+fn a_floor_thing_set_into_the_wall_stands_against_it() {
+    let r = prompt::read(
+        "A living room built around a huge aquarium set into the wall, with a painting on the \
+         wall beside it and a cabinet on the wall.",
+    );
+    let plan = plan_house_room(&r, 0);
+    let aquarium = plan.furniture.iter().find(|w| w.noun == "aquarium");
+    assert!(
+        aquarium.is_some_and(|w| w.arrangement == Arrangement::AgainstWall),
+        "{plan:#?}"
+    );
+    assert!(!plan.wall.iter().any(|w| w.noun == "aquarium"), "{plan:#?}");
+    // A wall thing stays on the wall, and a floor thing with a wall-mounted kind is hung.
+    assert!(plan.wall.iter().any(|w| w.noun == "painting"), "{plan:#?}");
+    assert!(
+        plan.wall.iter().any(|w| w.noun.contains("cabinet")),
+        "{plan:#?}"
+    );
+}
+
+#[test]
+fn a_broader_negation_keeps_the_things_the_prompt_names() {
+    let r = prompt::read(
+        "A smithy. A rack holds at least six hammers of different weights, and there is no \
+         power tool of any kind.",
+    );
+    let plan = plan_house_room(&r, 0);
+    assert!(plan.count_of("hammer") >= 6, "{plan:#?}");
+    assert_eq!(plan.count_of("weight"), 0, "{plan:#?}");
+    // The same thing named and excluded stays excluded.
+    let r = prompt::read("A bedroom with a bed and a lamp. There is no lamp.");
+    assert_eq!(plan_house_room(&r, 0).count_of("lamp"), 0);
+}

@@ -286,7 +286,9 @@ impl Builder<'_> {
             skip.push(*i);
         }
         for (i, m) in &mentions {
-            if m.negated || skip.contains(i) || self.excluded(&m.category) {
+            // A thing the prompt names is kept when only a broader kind is excluded: "at least
+            // six hammers ... no power tool of any kind" keeps the hammers.
+            if m.negated || skip.contains(i) || self.plan.excluded.contains(&m.category) {
                 continue;
             }
             if !m.known && m.head.is_none() && !self.plan.unknown.contains(&m.category) {
@@ -361,6 +363,12 @@ impl Builder<'_> {
                         .unwrap_or(Arrangement::AgainstWall);
                     self.plan.furniture.push(want);
                 }
+                // "a huge aquarium set into the wall": a floor thing with no wall-mounted kind
+                // stands against the wall.
+                Support::Wall if self.floor_thing_without_wall_kind(&m.category) => {
+                    want.arrangement = Arrangement::AgainstWall;
+                    self.plan.furniture.push(want);
+                }
                 Support::Wall => {
                     want.arrangement = self.relation_arrangement(m, count).unwrap_or_else(|| {
                         self.kb_arrangement(&m.category)
@@ -385,6 +393,19 @@ impl Builder<'_> {
                 Support::Surface => self.explicit_surface(m, want),
             }
         }
+    }
+
+    /// A thing of the floor (by the lexicon) of which the lexicon knows no wall-mounted kind
+    /// ("wall cabinet" for a cabinet, "wall shelf" for a shelf).
+    fn floor_thing_without_wall_kind(&self, noun: &str) -> bool {
+        let suffix = format!(" {noun}");
+        self.lex
+            .lookup(noun)
+            .is_some_and(|e| e.support == Support::Floor)
+            && !self.lex.objects.iter().any(|o| {
+                o.support == Support::Wall
+                    && (o.kind_of.as_deref() == Some(noun) || o.noun.ends_with(&suffix))
+            })
     }
 
     /// A small object: its parent furniture and how it lies there.

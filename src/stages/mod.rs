@@ -159,10 +159,17 @@ pub struct RoutedAsset {
 }
 
 /// A short description that is a name ("long wedging table", "paint-spattered radio") and
-/// says more than `category`; not a sentence an LLM designer wrote.
+/// says more than `category`; not a sentence an LLM designer wrote. Of a description that
+/// goes on after its main phrase ("black grand piano with its lid raised"), the main phrase.
 fn object_name(description: &str, category: &str) -> Option<String> {
     let text = description.trim().to_lowercase();
-    let words: Vec<&str> = text.split_whitespace().collect();
+    let mut words: Vec<&str> = text.split_whitespace().collect();
+    if words.len() > 5
+        && let Some(end) = words.iter().position(|w| router::parse::is_connector(w))
+    {
+        words.truncate(end);
+    }
+    let text = words.join(" ");
     let plain = words.iter().all(|w| {
         w.chars()
             .all(|c| c.is_alphabetic() || c == '-' || c == '\'')
@@ -408,5 +415,30 @@ impl StageState {
             .objects
             .iter()
             .filter(|o| o.room == self.room && o.kind != ObjectKind::Architecture)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::object_name;
+
+    #[test]
+    fn an_object_is_named_by_its_main_phrase() {
+        assert_eq!(
+            object_name("long wedging table", "table").as_deref(),
+            Some("long wedging table")
+        );
+        // A description that goes on names the object by the phrase before its parts.
+        assert_eq!(
+            object_name("black grand piano with its lid raised", "piano").as_deref(),
+            Some("black grand piano")
+        );
+        // "of" joins one name; a name no longer than the category's says nothing more.
+        assert_eq!(object_name("chest of drawers", "chest_of_drawers"), None);
+        assert_eq!(
+            object_name("pegboard displaying a pair of scissors", "pegboard"),
+            None
+        );
+        assert_eq!(object_name("table", "table"), None);
     }
 }

@@ -95,6 +95,12 @@ const CONNECTORS: [&str; 9] = [
     "of",
 ];
 
+/// Whether `word` begins a connector other than "of" (which also joins the words of one name:
+/// "chest of drawers").
+pub fn is_connector(word: &str) -> bool {
+    word != "of" && CONNECTORS.iter().any(|c| c.split(' ').next() == Some(word))
+}
+
 /// Words that never name the object.
 const STOP: [&str; 24] = [
     "a", "an", "the", "some", "of", "with", "and", "or", "on", "in", "at", "least", "to", "for",
