@@ -173,6 +173,25 @@ pub(crate) fn chunk_sentence(
                 i += 1;
                 continue;
             }
+            // "nothing on the walls except a clock": after a negation, "except" and "but"
+            // end it.
+            "except" | "but" if out.iter().any(|c| c.item == Item::Without) => {
+                push(&mut out, Item::Other("except".to_string()), 1);
+                i += 1;
+                continue;
+            }
+            // "You will not find a cash register here": "not" before a verb in its base form
+            // negates the clause.
+            "not"
+                if next.is_some_and(|n| {
+                    crate::words::wordnet::wordnet().is_lemma(n, crate::words::wordnet::Pos::Verb)
+                        && lex.determiner(n).is_none()
+                }) =>
+            {
+                push(&mut out, Item::Without, 1);
+                i += 1;
+                continue;
+            }
             // "there is no longer a car in here".
             "no" if tokens.get(i + 1).is_some_and(|t| t.text == "longer") => {
                 push(&mut out, Item::Without, 2);
@@ -288,7 +307,45 @@ pub(crate) fn chunk_sentence(
             }
         }
     }
+    measures_of_variety(tokens, &mut out);
     out
+}
+
+/// Words that say the things before "of" differ in what follows ("hammers of different
+/// weights", "jars of various sizes").
+const VARIETY: [&str; 6] = [
+    "different",
+    "various",
+    "varying",
+    "differing",
+    "assorted",
+    "mixed",
+];
+
+/// "of different weights": after "of" and a word of [`VARIETY`], a noun outside the object
+/// lexicon whose senses are mostly no thing (a weight, a shade) says how the things before
+/// differ; it is no thing of its own. "jars of different spices" still names spices.
+fn measures_of_variety(tokens: &[Token], out: &mut [Chunk]) {
+    for k in 1..out.len() {
+        if out[k - 1].item != Item::Of {
+            continue;
+        }
+        let first = word(tokens, out[k].range.start);
+        let Item::Np(np) = &mut out[k].item else {
+            continue;
+        };
+        let Head::Object {
+            noun, entry: None, ..
+        } = &np.head
+        else {
+            continue;
+        };
+        let head = noun.rsplit(' ').next().unwrap_or(noun);
+        let measure = crate::words::ground::noun_info(head).is_some_and(|i| i.share < 0.5);
+        if first.is_some_and(|w| VARIETY.contains(&w)) && measure {
+            np.head = Head::NonObject;
+        }
+    }
 }
 
 /// The class of a verb in -s at `i` right after a singular noun phrase or its relative

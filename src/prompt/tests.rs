@@ -1144,3 +1144,60 @@ fn a_capitalised_rarely_physical_noun_that_the_sentence_places_is_a_thing() {
     let r = read("A den where a Bible lies on the table.");
     assert!(r.mentions.iter().any(|m| m.category == "bible"));
 }
+
+#[test]
+fn negation_by_pronoun_adverb_verb_and_forbidding() {
+    let negated = |text: &str, cat: &str| {
+        let r = read(text);
+        let m = find(&r, cat);
+        m.negated
+    };
+    assert!(negated(
+        "A bakery with an oven. Nobody has ever put a television in here.",
+        "tv"
+    ));
+    assert!(negated(
+        "A cabin with bunks. Nowhere in the cabin is there a dishwasher.",
+        "dishwasher"
+    ));
+    assert!(negated(
+        "A shop with a counter. You will not find a cash register here.",
+        "cash register"
+    ));
+    assert!(negated("A club with tables. Phones are forbidden.", "phone"));
+    // What the negation's exception names is there, and so is what follows "but".
+    assert!(!negated(
+        "The room has nothing on the walls except a clock.",
+        "wall clock"
+    ));
+    assert!(!negated(
+        "There is no sofa but a bench stands by the wall.",
+        "bench"
+    ));
+    // An adjective after "not" negates no thing.
+    assert!(!negated("A room that is not cluttered, with a sofa.", "sofa"));
+}
+
+#[test]
+fn the_things_around_a_noun_choose_its_sense() {
+    // Beside a sewing machine an iron is a smoothing iron, not the golf club the word alone
+    // is built as.
+    let r = read("A sewing room with a sewing machine, an ironing board and an iron.");
+    assert_eq!(mentions_of(&r, "smoothing iron"), 1, "{:?}", r.mentions);
+    let iron = r.nouns.iter().find(|n| n.noun == "iron").unwrap();
+    assert_eq!(iron.status, NounStatus::StandIn, "{iron:?}");
+    // Alone, it keeps its own name.
+    let r = read("A garage with an iron and a bag.");
+    assert_eq!(mentions_of(&r, "iron"), 1, "{:?}", r.mentions);
+}
+
+#[test]
+fn things_of_different_weights_differ_in_weight() {
+    let r = read("A rack holds six hammers of different weights and jars of various shades.");
+    assert_eq!(find(&r, "hammer").count, Count::Exactly(6));
+    assert_eq!(mentions_of(&r, "weight"), 0, "{:?}", r.mentions);
+    assert_eq!(mentions_of(&r, "shade"), 0, "{:?}", r.mentions);
+    // A thing the lexicon knows is still a thing.
+    let r = read("A kitchen with jars of different spices.");
+    assert!(r.mentions.iter().any(|m| m.category.contains("spice")));
+}

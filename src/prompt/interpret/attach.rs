@@ -272,6 +272,12 @@ impl Interp<'_> {
                 }
             }
             "cover" => c.ctx = Ctx::Cover(subject),
+            // "Phones are forbidden": the things the clause is about are not there.
+            "forbid" => {
+                for s in &subject {
+                    self.mentions[s.m].negated = true;
+                }
+            }
 
             "styled" | "inspired" => {
                 let targets = if subject_is_room || subject.is_empty() {

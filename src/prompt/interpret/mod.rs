@@ -479,7 +479,7 @@ impl<'a> Interp<'a> {
                     }
                 }
                 // "There is no sofa; instead, two armchairs": what follows is there.
-                Item::Other(w) if w == "instead" => c.negate = false,
+                Item::Other(w) if w == "instead" || w == "except" => c.negate = false,
                 // "no television, because the aquarium is ...": a reason clause is no longer
                 // under the negation.
                 Item::Other(w) if matches!(w.as_str(), "because" | "since" | "so") => {
