@@ -1164,7 +1164,10 @@ fn negation_by_pronoun_adverb_verb_and_forbidding() {
         "A shop with a counter. You will not find a cash register here.",
         "cash register"
     ));
-    assert!(negated("A club with tables. Phones are forbidden.", "phone"));
+    assert!(negated(
+        "A club with tables. Phones are forbidden.",
+        "phone"
+    ));
     // What the negation's exception names is there, and so is what follows "but".
     assert!(!negated(
         "The room has nothing on the walls except a clock.",
@@ -1175,7 +1178,10 @@ fn negation_by_pronoun_adverb_verb_and_forbidding() {
         "bench"
     ));
     // An adjective after "not" negates no thing.
-    assert!(!negated("A room that is not cluttered, with a sofa.", "sofa"));
+    assert!(!negated(
+        "A room that is not cluttered, with a sofa.",
+        "sofa"
+    ));
 }
 
 #[test]

@@ -561,6 +561,24 @@ pub fn sense_in_company(
     Some(SenseInCompany { lemma, family })
 }
 
+/// Whether the noun `words` may be read as a kind of the noun `word`: WordNet does not know
+/// `words`, or one of its placeable senses has a sense of `word` among its hypernyms ("kitchen
+/// table" is a table; "smoothing iron" is no iron of the golf-club or metal kind: it is a
+/// home appliance).
+pub fn is_kind_of_word(words: &str, word: &str) -> bool {
+    let Some(info) = noun_info(words) else {
+        return true;
+    };
+    let Some(lemma) = noun_lemma(word) else {
+        return false;
+    };
+    let wn = wordnet();
+    let senses: Vec<SynsetId> = wn.noun_senses(&lemma).iter().map(|s| s.synset).collect();
+    info.placeable
+        .iter()
+        .any(|&s| wn.ancestors(s).iter().any(|(a, _)| senses.contains(a)))
+}
+
 /// The nearest room word `known` accepts along the hypernyms of the room-like senses of
 /// `words` ("bakehouse" -> "bakery", "pantry" -> "storeroom").
 pub fn room_family(words: &str, known: &dyn Fn(&str) -> bool) -> Option<Family> {
@@ -650,6 +668,15 @@ mod tests {
         assert!(family("unease", &known).is_none());
         // Never above the stop synsets: nothing is a kind of "artifact" here.
         assert!(family("chandelier", &|n: &str| n == "artifact").is_none());
+    }
+
+    #[test]
+    fn a_compound_is_a_kind_of_its_last_word_unless_wordnet_says_otherwise() {
+        assert!(is_kind_of_word("kitchen table", "table"));
+        // WordNet: a machine tool, no kind of press.
+        assert!(!is_kind_of_word("drill press", "press"));
+        assert!(is_kind_of_word("filter coffee stand", "stand"));
+        assert!(!is_kind_of_word("smoothing iron", "iron"));
     }
 
     #[test]

@@ -377,6 +377,12 @@ pub fn library_family_for(
 fn family_where(noun: &str, known: &dyn Fn(&str) -> bool) -> Option<crate::words::ground::Family> {
     crate::words::ground::family(noun, known).or_else(|| {
         let last = noun.rsplit(' ').next().filter(|l| *l != noun)?;
+        // A compound is a kind of its last word unless WordNet knows it as something else
+        // ("smoothing iron": a home appliance, no family near; its last word's family would
+        // be the golf club's).
+        if !crate::words::ground::is_kind_of_word(noun, last) {
+            return None;
+        }
         crate::words::ground::family(last, known)
     })
 }

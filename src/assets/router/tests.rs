@@ -244,3 +244,15 @@ fn repeated_requests_come_from_the_cache_and_share_assets() {
     .unwrap();
     assert_eq!(other.primary.asset.id, a.primary.asset.id);
 }
+
+#[test]
+fn a_plan_noun_wordnet_knows_is_built_as_itself() {
+    // The prompt's "iron", which the plan reads as a smoothing iron: no family of the golf
+    // club the bare word would route to, but a stand-in of its own.
+    let mut req = RouteRequest::new("iron", Stage::Manipuland, 1);
+    req.category = Some("smoothing iron".to_string());
+    let r = route(&req, &ctx()).unwrap();
+    assert_eq!(r.primary.strategy, Strategy::Generic, "{r:?}");
+    assert!(r.primary.category.contains("iron"), "{r:?}");
+    assert!(!r.notes.iter().any(|n| n.contains("golf")), "{:?}", r.notes);
+}
