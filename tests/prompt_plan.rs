@@ -240,3 +240,25 @@ fn a_broader_negation_keeps_the_things_the_prompt_names() {
     let r = prompt::read("A bedroom with a bed and a lamp. There is no lamp.");
     assert_eq!(plan_house_room(&r, 0).count_of("lamp"), 0);
 }
+
+#[test]
+fn what_one_room_of_a_house_excludes_no_other_room_adds_by_default() {
+    let r = prompt::read(
+        "The house has a kitchen, a living room and a bedroom. The kitchen has a stove and a \
+         table. The living room has a sofa and an armchair. The bedroom has a bed. Nobody has \
+         ever put a television in here.",
+    );
+    for i in 0..r.rooms.len() {
+        let plan = plan_house_room(&r, i);
+        assert_eq!(plan.count_of("tv"), 0, "room {i}: {plan:#?}");
+    }
+    // A room that asks for it still has it.
+    let r = prompt::read(
+        "The flat has a kitchen and a dining room. The kitchen has no table. The dining room \
+         has a big table with four chairs.",
+    );
+    let tables: u32 = (0..r.rooms.len())
+        .map(|i| plan_house_room(&r, i).count_of("table"))
+        .sum();
+    assert!(tables >= 1, "{:?}", r.mentions);
+}

@@ -270,6 +270,16 @@ impl Builder<'_> {
                 self.plan.excluded.push(m.category.clone());
             }
         }
+        // "Nobody has ever put a television in here" at the end of a house prompt: what one
+        // room excludes, no other room adds by default, unless that room asks for it.
+        for m in self.reading.mentions.iter().filter(|m| m.negated) {
+            let asked_here = mentions
+                .iter()
+                .any(|(_, h)| !h.negated && covers(self.lex, &h.category, &m.category));
+            if !asked_here && !self.plan.excluded.contains(&m.category) {
+                self.plan.excluded.push(m.category.clone());
+            }
+        }
         // Generic mentions that count specific ones: share the count out.
         let mut share: BTreeMap<usize, (u32, bool)> = BTreeMap::new();
         let mut skip: Vec<usize> = Vec::new();
