@@ -263,9 +263,16 @@ impl StageState {
         let mut plan_builds = None;
         if let Some(noun) = self.planned_noun(description) {
             let of_noun = router::parse::main_categories(&noun);
-            let same_kind = of_noun.first() == candidates.first()
-                || generator(of_noun.first())
-                    .is_some_and(|g| generator(candidates.first()) == Some(g));
+            // A noun the library does not build leaves the description to the router when the
+            // router reads a thing in it ("rulers"), not when it reads none ("iron", a
+            // material to the router, is planned as a smoothing iron).
+            let same_kind = if of_noun.is_empty() {
+                router::parse::object_name(description).is_some()
+            } else {
+                of_noun.first() == candidates.first()
+                    || generator(of_noun.first())
+                        .is_some_and(|g| generator(candidates.first()) == Some(g))
+            };
             if !same_kind {
                 candidates = of_noun;
                 plan_builds = Some(noun);
