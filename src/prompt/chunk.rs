@@ -9,6 +9,7 @@ use std::ops::Range;
 pub(crate) use super::phrase::{Head, Np, Pronoun};
 use super::phrase::{parse_np, pronoun_np, quantifier_fits, word};
 use crate::knowledge::Knowledge;
+use crate::words::ground;
 use crate::words::lexicon::Lexicon;
 use crate::words::tokens::{Token, TokenKind};
 
@@ -106,11 +107,20 @@ pub(crate) fn chunk_sentence(
                 out.last().map(|c| &c.item),
                 Some(Item::With | Item::Including | Item::Prep(_))
             )
-            // "a vase of flowers" lists contents; "a love of greenery" does not.
+            // "a vase of flowers" lists contents; "a love of greenery", "the place smells of
+            // woodsmoke" and "reminiscent of a ship" do not.
             || (matches!(out.last().map(|c| &c.item), Some(Item::Of))
                 && !matches!(
                     out.iter().rev().nth(1).map(|c| &c.item),
                     Some(Item::Np(np)) if matches!(np.head, Head::NonObject)
+                )
+                && !matches!(
+                    out.iter().rev().nth(1).map(|c| &c.item),
+                    Some(Item::Verb(class, _)) if class == "other"
+                )
+                && !matches!(
+                    out.iter().rev().nth(1).map(|c| &c.item),
+                    Some(Item::Other(w)) if ground::is_adjective(w) || lex.verb(w).is_some()
                 ))
             || matches!(out.last().map(|c| &c.item), Some(Item::Verb(class, _)) if matches!(class.as_str(), "possess" | "display" | "fill_with"));
         // Fixed phrases first.
@@ -348,8 +358,9 @@ fn measures_of_variety(tokens: &[Token], out: &mut [Chunk]) {
     }
 }
 
-/// The class of a verb in -s at `i` right after a singular noun phrase or its relative
-/// pronoun, with a determiner, number or quantifier after it (see `chunk_sentence`).
+/// The class of a verb at `i` with a determiner, number or quantifier after it: one in -s
+/// right after a singular noun phrase or its relative pronoun, or one in its base form right
+/// after a plural object phrase (see `chunk_sentence`).
 fn verb_after_singular(
     lex: &Lexicon,
     tokens: &[Token],
@@ -393,7 +404,24 @@ fn verb_after_singular(
         && !wn
             .base_forms(w, crate::words::wordnet::Pos::Verb)
             .is_empty();
-    (singular && np_next && verb).then_some("possess")
+    if singular && np_next && verb {
+        return Some("possess");
+    }
+    // "Eight beds line the walls": after a plural phrase, a verb in its base form with a
+    // phrase after it; placing when that phrase is a part of the room, else of no class
+    // ("bookshelves flank the fireplace").
+    let plural =
+        (np.plural || np.number.is_some_and(|n| n > 1)) && matches!(np.head, Head::Object { .. });
+    let base_verb = !w.ends_with('s')
+        && wn.is_lemma(w, crate::words::wordnet::Pos::Verb)
+        && lex.preposition_at(tokens, i).is_none()
+        && !lex.is_function_word(w);
+    if plural && np_next && base_verb {
+        let landmark_next =
+            (i + 2..i + 4).any(|k| word(tokens, k).is_some_and(|x| lex.landmark(x).is_some()));
+        return Some(if landmark_next { "locate" } else { "other" });
+    }
+    None
 }
 
 /// A verb the lexicon's table does not list, after a noun phrase ("The kitchen boasts a

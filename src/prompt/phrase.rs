@@ -1275,7 +1275,7 @@ impl Grounded {
 }
 
 /// How a phrase presents its noun as a thing.
-#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
 enum Evidence {
     /// Nothing presents it.
     Weak,
@@ -1391,6 +1391,83 @@ fn compound_word(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], k: usize) -> b
         && !matches!(ground::only_other_pos(x), Some("verb" | "adverb"))
 }
 
+/// Length of a compound noun WordNet knows as written (2 or 3 words, the last possibly plural)
+/// that starts at `k` and ends before `end`.
+fn wordnet_compound_len(lex: &Lexicon, tokens: &[Token], k: usize, end: usize) -> Option<usize> {
+    (2..=3).rev().find(|&n| {
+        k + n <= end && (k..k + n).all(|q| word(tokens, q).is_some()) && {
+            let mut ws: Vec<String> = tokens[k..k + n].iter().map(|t| t.text.clone()).collect();
+            if let Some(l) = ws.last_mut() {
+                *l = lex.singular(l);
+            }
+            let c = ws.join(" ");
+            ground::noun_lemma(&c).is_some_and(|l| l == c)
+        }
+    })
+}
+
+/// A word the verb table lists that is also a WordNet noun in its base form ("mount",
+/// "stand", "rest"), and no determiner or preposition.
+fn base_form_noun(lex: &Lexicon, tokens: &[Token], k: usize) -> bool {
+    let Some(x) = word(tokens, k) else {
+        return false;
+    };
+    lex.verb(x).is_some()
+        && lex.determiner(x).is_none()
+        && lex.preposition_at(tokens, k).is_none()
+        && crate::words::wordnet::wordnet().is_lemma(x, crate::words::wordnet::Pos::Noun)
+        && !x.ends_with('s')
+        && !x.ends_with("ed")
+        && !x.ends_with("ing")
+        && tokens.get(k.wrapping_sub(1)).is_some_and(|t| {
+            // Only after a modifier: "each have", "a display" keep their own readings.
+            !lex.is_plural(&t.text)
+                && t.is_word()
+                && lex.determiner(&t.text).is_none()
+                && lex.number(t).is_none()
+                && lex.quantifier_at(tokens, k - 1).is_none()
+        })
+}
+
+/// Tag count under which an -ing noun is rare enough to read as a verb form after a noun
+/// ("ticking", "humming"; not "painting", "drawing").
+const RARE_ING_NOUN_COUNT: u32 = 5;
+
+/// Whether the -ing word at `k`, after a noun, is a participle: a WordNet verb form whose noun
+/// senses name no thing or are rare, followed by a preposition, a determiner, punctuation or
+/// the end of the phrase, and not one WordNet noun with the word before it.
+fn participle_after_noun(lex: &Lexicon, tokens: &[Token], k: usize, end: usize) -> bool {
+    let wn = crate::words::wordnet::wordnet();
+    let Some(x) = word(tokens, k) else {
+        return false;
+    };
+    if !x.ends_with("ing")
+        || wn
+            .base_forms(x, crate::words::wordnet::Pos::Verb)
+            .is_empty()
+    {
+        return false;
+    }
+    let prev_is_noun = word(tokens, k - 1).is_some_and(ground::is_noun);
+    let clause_follows = k + 1 >= end
+        || word(tokens, k + 1).is_none_or(|n| {
+            lex.preposition_at(tokens, k + 1).is_some() || lex.determiner(n).is_some()
+        });
+    let rare = ground::noun_info(x).is_none_or(|i| {
+        i.share == 0.0
+            || wn
+                .noun_senses(&i.lemma)
+                .iter()
+                .map(|s| s.count)
+                .sum::<u32>()
+                < RARE_ING_NOUN_COUNT
+    });
+    prev_is_noun
+        && clause_follows
+        && rare
+        && word(tokens, k - 1).is_some_and(|p| wordnet_pair(lex, p, x).is_none())
+}
+
 /// After a lexicon noun: one or two nouns the lexicon does not know that end the phrase
 /// and that WordNet grounds as a thing ("pit" of "ball pit", "coffee stand" of "filter coffee
 /// stand"). Returns (words used, grounding).
@@ -1434,6 +1511,7 @@ fn compound_tail(
     while len < 2
         && at + len < end
         && !(len > 0 && verb_then_phrase(at + len))
+        && !participle_after_noun(lex, tokens, at + len, end)
         && lex.noun_at(tokens, at + len).is_none()
         && tail_word(at + len)
         && ground::is_noun(&tokens[at + len].text)
@@ -1612,7 +1690,37 @@ fn open_head(
         {
             return Open::Feature(k + 1);
         }
+        // "a refracting telescope": words WordNet knows together as one noun are read whole,
+        // whatever the first of them is on its own (here a verb form).
+        if let Some(n) = wordnet_compound_len(lex, tokens, k, end) {
+            k += n;
+            continue;
+        }
+        // "a grinding wheel turned by a pedal": after a noun, a past participle that is no
+        // noun begins a clause about it.
+        if k > j
+            && x.ends_with("ed")
+            && !ground::is_noun(x)
+            && !crate::words::wordnet::wordnet()
+                .base_forms(x, crate::words::wordnet::Pos::Verb)
+                .is_empty()
+        {
+            break;
+        }
+        // "a heavy iron mount dominates": after modifiers, a noun in its base form that the
+        // verb table also lists ends the phrase as its noun; a singular subject's verb would
+        // end in -s.
+        if k == j && k > phrase_start && base_form_noun(lex, tokens, k) {
+            k += 1;
+            break;
+        }
         if !compound_word(lex, kb, tokens, k) {
+            break;
+        }
+        // "a brass metronome ticking on its lid": after a noun, a verb form in -ing that
+        // rarely names a thing, with a preposition, a determiner or nothing after it, begins
+        // a clause about the noun.
+        if k > j && participle_after_noun(lex, tokens, k, end) {
             break;
         }
         // A word that is never an object on its own ("coffee", "reading") may still modify
@@ -1625,8 +1733,15 @@ fn open_head(
             break;
         }
         // "a headboard dominates the space": after a singular noun, a verb in -s is the verb.
+        // "the observatory opens to the sky": after "the" too, when the word is rarely a
+        // thing ("cups" stays a noun).
+        let rarely_thing = || {
+            np.det.as_deref() == Some("definite")
+                && ground::noun_info(x)
+                    .is_none_or(|i| i.share < ground::rules().min_share_with_evidence)
+        };
         if k > j
-            && singular_det
+            && (singular_det || rarely_thing())
             && x.ends_with('s')
             && ground::only_other_pos(x).is_none()
             && crate::words::wordnet::wordnet().has_pos(x, crate::words::wordnet::Pos::Verb)
@@ -1716,6 +1831,12 @@ fn open_head(
     } else {
         evidence
     };
+    if ground::is_animal(&name.join(" "))
+        && !made_likeness(np)
+        && !animal_placed(lex, tokens, phrase_start, k)
+    {
+        return dropped("an animal the sentence does not place in the room".to_string());
+    }
     match ground_words(lex, name, evidence) {
         Ok(head) => {
             let last = words.len() - 1;
@@ -1812,6 +1933,49 @@ fn placed(lex: &Lexicon, tokens: &[Token], start: usize, next: usize) -> bool {
             || spatial_at(next).is_some()
             || placing_verb(next)
             || listed_placed(lex, tokens, start))
+}
+
+/// Words before an animal's name that make it a made thing ("a stuffed owl", "a toy dog").
+const MADE_ANIMAL_WORDS: [&str; 8] = [
+    "stuffed",
+    "toy",
+    "plush",
+    "cuddly",
+    "carved",
+    "model",
+    "taxidermy",
+    "wind-up",
+];
+
+/// Whether the phrase's modifiers make its animal a made thing: a material ("a brass fox") or
+/// one of [`MADE_ANIMAL_WORDS`].
+fn made_likeness(np: &Np) -> bool {
+    !np.attrs.materials.is_empty()
+        || np
+            .attrs
+            .modifiers
+            .iter()
+            .any(|m| MADE_ANIMAL_WORDS.contains(&m.to_lowercase().as_str()))
+}
+
+/// "A fat cat is asleep on the sofa", "a fox rests on a stand": an animal is in the room when
+/// the words right after its phrase place it (a spatial preposition, a verb of placing); "a
+/// scale for large dogs", "posters showing a cat" place none.
+fn animal_placed(lex: &Lexicon, tokens: &[Token], start: usize, next: usize) -> bool {
+    let purpose = start
+        .checked_sub(1)
+        .and_then(|k| word(tokens, k))
+        .is_some_and(|w| {
+            matches!(w, "for" | "of" | "like" | "about")
+                || lex.verb(w).is_some_and(|c| c == "display")
+        });
+    let spatial = lex
+        .preposition_at(tokens, next)
+        .is_some_and(|(_, class)| class != "from");
+    let placing = word(tokens, next)
+        .and_then(|w| lex.verb(w))
+        .is_some_and(|class| !matches!(class, "inspired" | "styled" | "made" | "other"));
+    !purpose && (spatial || placing)
 }
 
 /// "a stack of flyers", "full of logbooks": the phrase at `start` follows "of" after a group

@@ -9,6 +9,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::chunk::{Chunk, Head, Item, Np};
+use crate::words::ground;
 use crate::words::lexicon::Lexicon;
 use crate::words::tokens::Token;
 
@@ -648,10 +649,36 @@ fn counted_rooms(lex: &Lexicon, tokens: &[Token]) -> Vec<(String, String, u32)> 
         let t = house.count_words.get(&w)?;
         Some((t.clone(), t.replace('_', " ")))
     };
+    // "a six-bed hospital ward", "a four-bed dorm room": a house's count word ("bed" for
+    // bedrooms) before a room that is no dwelling counts the things in that room, not rooms.
+    let room_after = |i: usize| {
+        (i + 1..tokens.len()).any(|k| {
+            (1..=2).any(|n| {
+                k + n <= tokens.len() && {
+                    let words: Vec<String> = tokens[k..k + n]
+                        .iter()
+                        .map(|t| lex.singular(&t.text))
+                        .collect();
+                    let words = words.join(" ");
+                    ground::is_room_word(&words) && !ground::is_dwelling(&words)
+                }
+            })
+        })
+    };
     let mut out: Vec<(String, String, u32)> = Vec::new();
     for (i, t) in tokens.iter().enumerate() {
+        let by_count_word = |w: &str| {
+            reg.room_type_of(&lex.singular(w))
+                .is_none_or(|t| t == "room")
+        };
         let found = match t.text.split_once('-') {
+            Some((_, b)) if by_count_word(b) && room_after(i) => None,
             Some((a, b)) => lex.number_word(a).zip(room_of(b)),
+            None if tokens.get(i + 1).is_some_and(|x| by_count_word(&x.text))
+                && room_after(i + 1) =>
+            {
+                None
+            }
             None => lex
                 .number(t)
                 .zip(tokens.get(i + 1).and_then(|x| room_of(&x.text))),
@@ -707,8 +734,10 @@ fn single_room(
     // turned into a home gym": a home gym).
     // A room after a preposition is where the room is, when the sentence names another
     // ("Hidden in a converted basement, this recording studio has ..."): the other first.
-    fn typed(chunks: &[Chunk], registry_type: bool) -> Option<&Np> {
-        let room_at = |k: usize, placed_ok: bool| match &chunks[k].item {
+    // "The clubroom of the chess society sits behind a café": a room named outside a
+    // preposition comes before one placed by it, whether or not the registry knows its type.
+    fn typed(chunks: &[Chunk], registry_type: bool, placed_ok: bool) -> Option<&Np> {
+        let room_at = |k: usize| match &chunks[k].item {
             Item::Np(np)
                 if matches!(&np.head, Head::Room { key, .. } if !registry_type || key != "room")
                     && !generic_room(np)
@@ -720,8 +749,7 @@ fn single_room(
             }
             _ => None,
         };
-        let find = |placed_ok: bool| (0..chunks.len()).find_map(|k| room_at(k, placed_ok));
-        find(false).or_else(|| find(true))
+        (0..chunks.len()).find_map(room_at)
     }
     // "The spare room has been turned into a home gym", "a garage used as a workshop": the
     // room after "into" or "as" is what the room is now.
@@ -760,9 +788,16 @@ fn single_room(
         })
         .unwrap_or_default();
     let room_np = role
-        .or_else(|| typed(first, true))
-        .or_else(|| typed(first, false))
-        .or_else(|| sentences.iter().skip(1).find_map(|s| typed(s, false)));
+        .or_else(|| typed(first, true, false))
+        .or_else(|| typed(first, false, false))
+        .or_else(|| typed(first, true, true))
+        .or_else(|| typed(first, false, true))
+        .or_else(|| {
+            sentences
+                .iter()
+                .skip(1)
+                .find_map(|s| typed(s, false, false).or_else(|| typed(s, false, true)))
+        });
     let room_np = room_np.or_else(|| {
         first.iter().find_map(|c| match &c.item {
             Item::Np(np) if matches!(np.head, Head::Room { .. }) => Some(np.as_ref()),
@@ -771,7 +806,13 @@ fn single_room(
     });
     let mut room = match room_np.map(|np| &np.head) {
         Some(Head::Room { key, words }) => RoomReading::new(key, words, words.clone()),
-        _ => RoomReading::new("room", "room", "room".into()),
+        _ => match building_subject(lex, tokens, first) {
+            Some(words) => {
+                let key = room_type_of_noun(&words);
+                RoomReading::new(&key, &words, words.clone())
+            }
+            None => RoomReading::new("room", "room", "room".into()),
+        },
     };
     // The converted room keeps its name ("the garage", furnished as a woodworking shop);
     // its new use gives the type.
@@ -799,6 +840,60 @@ fn single_room(
         head_chunks: 0,
         aliases,
     }
+}
+
+/// "At the top of the tower, the observatory opens to the sky", "The honey house at the edge
+/// of the orchard is sticky": with no room word, the subject of the first sentence names the
+/// room when WordNet knows its last word (or the last two) as a room or building. A
+/// building placed by a preposition is where the room is, not the room.
+fn building_subject(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Option<String> {
+    first.iter().enumerate().find_map(|(k, c)| {
+        let Item::Np(np) = &c.item else { return None };
+        let subject = np.head == Head::NonObject
+            && np.has_det()
+            && !np.negated
+            && (k == 0 || matches!(first[k - 1].item, Item::Comma))
+            && matches!(
+                first.get(k + 1).map(|x| &x.item),
+                Some(Item::Verb(..) | Item::Prep(_))
+            );
+        if !subject {
+            return None;
+        }
+        let words: Vec<String> = tokens[c.range.clone()]
+            .iter()
+            .filter(|t| t.is_word() && lex.determiner(&t.text).is_none())
+            .map(|t| t.text.clone())
+            .collect();
+        let last = words.last()?;
+        let one = lex.singular(last);
+        let two = words
+            .len()
+            .checked_sub(2)
+            .map(|i| format!("{} {one}", words[i]));
+        let roomish = |w: &str| {
+            crate::words::ground::is_room_word(w) || crate::words::ground::can_be_building(w)
+        };
+        if let Some(two) = two
+            .as_ref()
+            .filter(|t| crate::words::ground::noun_lemma(t).is_some() && roomish(t))
+        {
+            return Some(two.clone());
+        }
+        // "the honey house": a kind of building named by the word before it.
+        let noun_before = words.len() >= 2 && {
+            let w = &words[words.len() - 2];
+            crate::words::ground::is_noun(w)
+                && !lex.is_adjective(w)
+                && np.attrs.size.as_deref() != Some(w.as_str())
+                && !np.attrs.styles.iter().any(|x| x == w)
+                && lex.material(w).is_none()
+        };
+        match two {
+            Some(two) if roomish(&one) && noun_before => Some(two),
+            _ => roomish(&one).then_some(one),
+        }
+    })
 }
 
 /// A house from the room list of the first sentence.

@@ -1207,3 +1207,89 @@ fn things_of_different_weights_differ_in_weight() {
     let r = read("A kitchen with jars of different spices.");
     assert!(r.mentions.iter().any(|m| m.category.contains("spice")));
 }
+
+#[test]
+fn a_noun_wordnet_knows_whole_or_a_verb_form_after_a_noun() {
+    // "refracting" alone is a verb form; with "telescope" it is one WordNet noun.
+    let r = read("A large brass refracting telescope on a heavy iron mount dominates the room.");
+    assert_eq!(
+        mentions_of(&r, "refracting telescope"),
+        1,
+        "{:?}",
+        r.mentions
+    );
+    assert_eq!(mentions_of(&r, "mount"), 1, "{:?}", r.mentions);
+    assert_eq!(mentions_of(&r, "iron"), 0, "{:?}", r.mentions);
+    // "ticking on its lid" is about the metronome, and "turned by a pedal" about the wheel.
+    let r = read("An upright piano stands by the wall, a brass metronome ticking on its lid.");
+    assert!(
+        r.mentions.iter().all(|m| !m.noun.contains("ticking")),
+        "{:?}",
+        r.mentions
+    );
+    let r = read("A grinding wheel turned by a foot pedal is bolted to a bench.");
+    assert_eq!(mentions_of(&r, "grinding wheel"), 1, "{:?}", r.mentions);
+}
+
+#[test]
+fn an_animal_is_a_thing_only_where_the_sentence_places_it() {
+    let r = read("A fat ginger cat is asleep on the sofa, and a stuffed owl stands on the shelf.");
+    assert_eq!(mentions_of(&r, "cat"), 1, "{:?}", r.mentions);
+    assert_eq!(mentions_of(&r, "owl"), 1, "{:?}", r.mentions);
+    let r = read(
+        "A walk-on scale for large dogs sits on the floor, under posters showing a cat and a \
+         horse. The room smells of nervous dog.",
+    );
+    for a in ["dog", "cat", "horse"] {
+        assert_eq!(mentions_of(&r, a), 0, "{a}: {:?}", r.mentions);
+    }
+}
+
+#[test]
+fn each_as_the_object_of_a_preposition_distributes() {
+    let r = read("A breakfast room with four small tables and two chairs at each.");
+    assert_eq!(r.total(index(&r, "chair")), Count::Exactly(8));
+    let r = read(
+        "Six writing desks stand in two rows, and at each one a wooden stool and an inkwell \
+         await the next copyist.",
+    );
+    assert_eq!(r.total(index(&r, "stool")), Count::Exactly(6));
+    assert_eq!(r.total(index(&r, "inkwell")), Count::Exactly(6));
+    let r = read(
+        "Eight single beds line the walls, each made up with a grey blanket. Next to every bed \
+         stands a narrow locker, and a pair of boots waits beside each one.",
+    );
+    assert_eq!(r.total(index(&r, "blanket")), Count::Exactly(8));
+    assert_eq!(r.total(index(&r, "locker")), Count::Exactly(8));
+    // A list after ", each with" keeps going past what its last item faces.
+    let r = read(
+        "Six square tables are set up, each with a chessboard, a chess clock and two chairs \
+         facing each other across it.",
+    );
+    assert_eq!(r.total(index(&r, "chair")), Count::Exactly(12));
+}
+
+#[test]
+fn a_count_word_before_a_room_counts_things_not_rooms() {
+    let r = read("A six-bed hospital ward on the night shift. The beds stand in two rows.");
+    assert_eq!(r.scope, Scope::Room);
+    assert_eq!(r.total(index(&r, "bed")), Count::Exactly(6));
+    // Before a dwelling it still counts bedrooms.
+    let r = read("A cosy three-bed cottage with a kitchen and a lounge.");
+    assert_eq!(r.scope, Scope::House);
+    assert_eq!(
+        r.rooms.iter().filter(|x| x.room_type == "bedroom").count(),
+        3
+    );
+}
+
+#[test]
+fn the_subject_names_the_room_before_a_place_it_stands_in() {
+    let r =
+        read("At the top of the tower, the observatory opens to a cold sky. A desk stands there.");
+    assert_eq!(r.rooms[0].words, "observatory");
+    let r = read("The clubroom of the chess society sits behind a café. Six tables stand in rows.");
+    assert_eq!(r.rooms[0].words, "clubroom");
+    let r = read("The honey house at the edge of the orchard is sticky. An extractor sits there.");
+    assert_eq!(r.rooms[0].words, "honey house");
+}

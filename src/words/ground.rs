@@ -32,6 +32,8 @@ struct RulesFile {
     building_under: Vec<String>,
     document_under: Vec<String>,
     document_family: String,
+    animal_under: Vec<String>,
+    dwelling_under: Vec<String>,
 }
 
 /// Errors loading the grounding rules.
@@ -66,6 +68,8 @@ pub struct Rules {
     document_under: Vec<SynsetId>,
     /// The family printed matter is built as when no family is near along its hypernyms.
     pub document_family: String,
+    animal_under: Vec<SynsetId>,
+    dwelling_under: Vec<SynsetId>,
 }
 
 impl Rules {
@@ -97,6 +101,8 @@ impl Rules {
             building_under: resolve(&f.building_under)?,
             document_under: resolve(&f.document_under)?,
             document_family: f.document_family,
+            animal_under: resolve(&f.animal_under)?,
+            dwelling_under: resolve(&f.dwelling_under)?,
         })
     }
 
@@ -132,6 +138,12 @@ impl Rules {
     /// room, paper.
     pub fn document(&self, s: SynsetId) -> bool {
         self.under_any(s, &self.document_under)
+    }
+
+    /// A sense that names an animal: a thing in the room only where the sentence puts it
+    /// there, and built from no family.
+    pub fn animal(&self, s: SynsetId) -> bool {
+        self.under_any(s, &self.animal_under)
     }
 
     /// A sense that names a room, a building or a place of business.
@@ -171,6 +183,24 @@ pub fn can_be_building(words: &str) -> bool {
             .iter()
             .any(|s| r.under_any(s.synset, &r.building_under))
     })
+}
+
+/// Whether some sense of `words` (or of its last word) is a dwelling ("house", "flat",
+/// "cottage"): "a three-bed cottage" counts bedrooms, "a six-bed ward" beds.
+pub fn is_dwelling(words: &str) -> bool {
+    let r = rules();
+    lemma_or_last(words).is_some_and(|lemma| {
+        wordnet()
+            .noun_senses(&lemma)
+            .iter()
+            .any(|s| r.under_any(s.synset, &r.dwelling_under))
+    })
+}
+
+/// Whether `words` name a room or building more often than not (its room and building
+/// senses weigh at least the rules' `min_room_share`).
+pub fn is_room_word(words: &str) -> bool {
+    noun_info(words).is_some_and(|i| i.room_share >= rules().min_room_share)
 }
 
 /// Whether every room-like or physical sense of `words` is a whole building or ship ("hostel",
@@ -283,6 +313,13 @@ pub fn noun_info(words: &str) -> Option<NounInfo> {
         structure,
         documents: documents.into_iter().map(|(_, _, s)| s).collect(),
     })
+}
+
+/// True when the heaviest placeable sense of `words` is an animal ("cat", "fox", "bee").
+pub fn is_animal(words: &str) -> bool {
+    noun_info(words)
+        .and_then(|i| i.placeable.first().copied())
+        .is_some_and(|s| rules().animal(s))
 }
 
 /// True when WordNet knows `word` as a noun (any inflection).
@@ -452,6 +489,10 @@ fn nearest(lemma: &str, senses: &[SynsetId], known: &dyn Fn(&str) -> bool) -> Op
 /// rules' `document_family` (paper) when no family is near.
 pub fn family(words: &str, known: &dyn Fn(&str) -> bool) -> Option<Family> {
     let info = noun_info(words)?;
+    if info.placeable.first().is_some_and(|&s| rules().animal(s)) {
+        // A cat is no whip (cat-o'-nine-tails) and no tractor (Caterpillar).
+        return None;
+    }
     if !info.placeable.is_empty() {
         return nearest(&info.lemma, &info.placeable, known);
     }

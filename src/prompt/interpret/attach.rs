@@ -73,7 +73,7 @@ impl Interp<'_> {
             // "On the table is a tea set": fronted, applies to what follows the verb.
             let lm = landmark.map(str::to_string);
             let inst = tref.as_ref().and_then(|t| t.instance);
-            c.fronted = Some((p.class.clone(), lm, target, inst));
+            c.fronted = Some((p.class.clone(), lm, target, inst, each_target));
             return;
         }
         let mut attach = p.attach.clone();
@@ -431,6 +431,15 @@ impl Interp<'_> {
     pub(super) fn each(&mut self, c: &mut Clause, chunks: &[Chunk], k: usize) {
         let after_comma = k == 0 || matches!(chunks[k - 1].item, Item::Comma);
         let next = chunks.get(k + 1).map(|x| &x.item);
+        if k > 0
+            && matches!(chunks[k - 1].item, Item::Prep(_))
+            && let Some(p) = c.pending.take()
+        {
+            // "..., and at each one a stool": the preposition opens its clause.
+            let fronted = k < 2 || matches!(chunks[k - 2].item, Item::And | Item::Comma);
+            self.each_as_object(c, &p, next, fronted);
+            return;
+        }
         // "Two nightstands each hold a lamp": the subject, then "each", then its verb; also
         // after a participle phrase of a plural subject ("Six tables covered with cloths each
         // have two chairs").
@@ -492,9 +501,17 @@ impl Interp<'_> {
                     // What follows is the first thing of each, not a new list item.
                     c.after_sep = false;
                     // ", each topped with ...": the participle and its "with" both lead in.
+                    // ", each made up with ...": a particle may come between.
+                    let particle = |j: usize| match chunks.get(j).map(|x| &x.item) {
+                        Some(Item::Other(_)) => true,
+                        Some(Item::Np(np)) => np.head == Head::NonObject && !np.has_det(),
+                        _ => false,
+                    };
+                    let with_at =
+                        |j: usize| matches!(chunks.get(j).map(|x| &x.item), Some(Item::With));
                     c.each_with = (matches!(next, Some(Item::Verb(..)))
                         || self.participle(&chunks[k + 1]))
-                        && matches!(chunks.get(k + 2).map(|x| &x.item), Some(Item::With));
+                        && (with_at(k + 2) || (particle(k + 2) && with_at(k + 3)));
                 }
             }
             return;
@@ -509,6 +526,57 @@ impl Interp<'_> {
         {
             self.mentions[f.m].per = Some(Per::Each { parent });
         }
+    }
+
+    /// "two chairs at each", "a pair of boots beside each one", "at each one a stool and an
+    /// inkwell": "each" as the object of a preposition stands for the things last counted
+    /// in the plural before the phrases it distributes; those phrases are per thing.
+    fn each_as_object(&mut self, c: &mut Clause, p: &Pending, next: Option<&Item>, fronted: bool) {
+        let fronted = fronted || p.attach.is_empty();
+        let before = if fronted {
+            self.mentions.len()
+        } else {
+            p.attach
+                .iter()
+                .map(|r| r.m)
+                .min()
+                .unwrap_or(self.mentions.len())
+        };
+        let Some(parent) = self.plural_antecedent(before) else {
+            return;
+        };
+        let one = match next {
+            Some(Item::Other(w)) => w == "one",
+            Some(Item::Np(np)) => {
+                np.head == Head::NonObject && np.number == Some(1) && np.det.is_none()
+            }
+            _ => false,
+        };
+        c.skip_next = one;
+        if fronted {
+            // Fronted: what follows is the first thing of each.
+            c.ctx = Ctx::Each(vec![Ref::new(parent)]);
+            c.stack.clear();
+            c.stack.push(Ctx::Room);
+            c.after_sep = false;
+        } else {
+            self.relate_pending_each(
+                c,
+                p,
+                Target::Mention(parent),
+                None,
+                Some(Ref::new(parent)),
+                true,
+            );
+        }
+    }
+
+    /// The latest mention of this room before `before` that is counted in the plural.
+    fn plural_antecedent(&self, before: usize) -> Option<usize> {
+        (0..before.min(self.mentions.len())).rev().find(|&m| {
+            let x = &self.mentions[m];
+            x.room == self.room && !x.negated && !x.generic && is_plural_count(x.count)
+        })
     }
 
     pub(super) fn set_for(&mut self, c: &mut Clause, chunks: &[Chunk], k: usize) {

@@ -66,6 +66,11 @@ enum Intro {
     Of,
 }
 
+/// A fronted relation ("On the table is a tea set"): preposition class, landmark, target,
+/// target instance, and whether the target was "each"/"every" ("Next to every bed stands a
+/// locker": one thing per target).
+type Fronted = (String, Option<String>, Target, Option<u32>, bool);
+
 /// A preposition waiting for its object.
 #[derive(Debug, Clone)]
 struct Pending {
@@ -95,7 +100,7 @@ struct Clause {
     sep_was_comma: bool,
     and_partner: Option<Ref>,
     group_open: Option<Group>,
-    fronted: Option<(String, Option<String>, Target, Option<u32>)>,
+    fronted: Option<Fronted>,
     relative: bool,
     skip_np: bool,
     skip_next: bool,
@@ -609,7 +614,8 @@ impl<'a> Interp<'a> {
                     }
                     _ => None,
                 };
-                self.room_np(c, partner.unwrap_or(np), verb_follows, contents_follow)
+                self.room_np(c, partner.unwrap_or(np), verb_follows, contents_follow);
+                self.things_counted_before_room(chunk);
             }
             Head::Landmark(class) => {
                 let Some(target) = landmark_target(class) else {
@@ -976,7 +982,22 @@ fn list_goes_on(chunks: &[Chunk], k: usize) -> bool {
     let mut and_then_np = false;
     let mut after_and = false;
     for c in &chunks[k + 1..] {
-        match c.item {
+        match &c.item {
+            // "... and two chairs facing each other across it": after the last item, a
+            // phrase about it (a preposition, a participle, what they face) ends the list.
+            _ if and_then_np => {
+                let about_last = match &c.item {
+                    Item::Prep(_) | Item::Other(_) => true,
+                    Item::Verb(_, w) => w.ends_with("ing") || w.ends_with("ed"),
+                    Item::Np(np) => {
+                        matches!(np.head, Head::Pronoun(_) | Head::Landmark(_)) || np.is_definite()
+                    }
+                    _ => false,
+                };
+                if !about_last {
+                    return false;
+                }
+            }
             Item::Np(_) => and_then_np |= after_and,
             Item::And => after_and = true,
             Item::Comma => {}

@@ -299,7 +299,7 @@ impl Interp<'_> {
                 self.add_relation(r.m, rel);
             }
         }
-        if let Some((class, lm, target, inst)) = c.fronted.clone()
+        if let Some((class, lm, target, inst, each)) = c.fronted.clone()
             && c.verb.is_some()
             && c.stack.is_empty()
             && let Some((kind, t)) = normalize(&class, lm.as_deref(), None, target)
@@ -307,6 +307,13 @@ impl Interp<'_> {
             let mut rel = Relation::new(kind, t);
             rel.instance = inst;
             self.add_relation(r.m, rel);
+            if each
+                && let Target::Mention(parent) = t
+                && parent != r.m
+                && self.mentions[r.m].per.is_none()
+            {
+                self.mentions[r.m].per = Some(Per::Each { parent });
+            }
         }
         // "There is no television, only a pair of speakers": "only" ends the negation.
         if c.negate && !np.negated && np.quant.as_deref() == Some("exactly") {
@@ -688,6 +695,53 @@ impl Interp<'_> {
             m: self.mentions.len() - 1,
             instance: None,
             part: None,
+        }
+    }
+}
+
+impl Interp<'_> {
+    /// "A six-bed hospital ward", "a twelve-desk classroom": a number joined to an object
+    /// noun before a room word counts those things in the room. The room's own reading has
+    /// already decided that such a word before a dwelling counts rooms ("a three-bed flat").
+    pub(super) fn things_counted_before_room(&mut self, chunk: &Chunk) {
+        for t in &self.tokens[chunk.range.clone()] {
+            let Some((a, b)) = t.text.split_once('-') else {
+                continue;
+            };
+            let Some(n) = self.lex.number_word(a).filter(|&n| n >= 2) else {
+                continue;
+            };
+            let Some(e) = self.lex.lookup(&self.lex.singular(b)) else {
+                continue;
+            };
+            if self
+                .mentions
+                .iter()
+                .any(|m| m.room == self.room && m.category == e.noun)
+            {
+                continue;
+            }
+            self.mentions.push(Mention {
+                category: e.noun.clone(),
+                noun: self.lex.singular(b),
+                count: Count::Exactly(n),
+                negated: false,
+                known: true,
+                head: None,
+                support: e.support,
+                container: e.container,
+                generic: e.generic,
+                attributes: Default::default(),
+                relations: Vec::new(),
+                per: None,
+                group: None,
+                place_settings: None,
+                covers: Vec::new(),
+                room: self.room,
+                span: [t.start, t.end],
+                definite: false,
+            });
+            self.absorbed.push(None);
         }
     }
 }
