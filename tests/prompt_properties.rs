@@ -90,7 +90,9 @@ fn pools() -> &'static Pools {
             if info.roomlike {
                 continue;
             }
-            if i % 7 == 0 && info.share >= 0.95 && plural(w).is_some() {
+            // Animals are things only where a sentence places them; the templates do not
+            // always place theirs.
+            if i % 7 == 0 && info.share >= 0.95 && plural(w).is_some() && !ground::is_animal(w) {
                 things.push(w.to_string());
             } else if i % 5 == 0
                 && info.placeable.is_empty()
