@@ -1293,3 +1293,21 @@ fn the_subject_names_the_room_before_a_place_it_stands_in() {
     let r = read("The honey house at the edge of the orchard is sticky. An extractor sits there.");
     assert_eq!(r.rooms[0].words, "honey house");
 }
+
+#[test]
+fn each_subject_of_a_passive_gets_one_of_each() {
+    let r = read("Four small tables stand in the room. Each table is covered with a cloth.");
+    assert_eq!(
+        r.total(index(&r, "cloth")),
+        Count::Exactly(4),
+        "{:?}",
+        r.mentions
+    );
+    let r = read("Four small tables stand in the room, every table covered with a cloth.");
+    assert_eq!(
+        r.total(index(&r, "cloth")),
+        Count::Exactly(4),
+        "{:?}",
+        r.mentions
+    );
+}

@@ -253,6 +253,13 @@ impl Interp<'_> {
                 } else if finite {
                     c.ctx = Ctx::Holder(subject, Intro::Verb(contains));
                     c.rel_scope = c.rel_scope || c.pronoun_subject;
+                } else if c.each_subject && !subject.is_empty() {
+                    // "Each table is covered with a cloth", ", every table covered with a
+                    // cloth": one per table.
+                    c.ctx = Ctx::Each(subject);
+                    c.stack.clear();
+                    c.stack.push(Ctx::Room);
+                    c.each_with = matches!(chunks.get(k + 1).map(|x| &x.item), Some(Item::With));
                 } else if !matches!(chunks.get(k + 1).map(|x| &x.item), Some(Item::With)) {
                     // "filled with ..." leaves the contents to the "with".
                     self.push_ctx(c, Ctx::Holder(subject, Intro::Verb(contains)));

@@ -366,7 +366,11 @@ impl Interp<'_> {
                 c.last_np = vec![r.clone()];
                 true
             }
-            Some(Item::Verb(..)) if c.verb.is_none() && matches!(c.ctx, Ctx::Room) => {
+            // ", every table covered with a cloth": a participle after a finite verb too.
+            Some(Item::Verb(_, w))
+                if (c.verb.is_none() || (w.ends_with("ed") && c.after_sep))
+                    && matches!(c.ctx, Ctx::Room) =>
+            {
                 c.subject = vec![r.clone()];
                 c.focus = vec![r.clone()];
                 c.each_subject = true;
