@@ -176,25 +176,24 @@ fn lemma_or_last(words: &str) -> Option<String> {
 /// Whether some sense of `words` (or of its last word) is a whole building or ship: "vessel"
 /// of "the bridge of a research vessel", which is a container too.
 pub fn can_be_building(words: &str) -> bool {
+    some_sense_under(words, &rules().building_under)
+}
+
+/// Whether some sense of `words` (or of its last word) is under one of `anchors`.
+fn some_sense_under(words: &str, anchors: &[SynsetId]) -> bool {
     let r = rules();
     lemma_or_last(words).is_some_and(|lemma| {
         wordnet()
             .noun_senses(&lemma)
             .iter()
-            .any(|s| r.under_any(s.synset, &r.building_under))
+            .any(|s| r.under_any(s.synset, anchors))
     })
 }
 
 /// Whether some sense of `words` (or of its last word) is a dwelling ("house", "flat",
 /// "cottage"): "a three-bed cottage" counts bedrooms, "a six-bed ward" beds.
 pub fn is_dwelling(words: &str) -> bool {
-    let r = rules();
-    lemma_or_last(words).is_some_and(|lemma| {
-        wordnet()
-            .noun_senses(&lemma)
-            .iter()
-            .any(|s| r.under_any(s.synset, &r.dwelling_under))
-    })
+    some_sense_under(words, &rules().dwelling_under)
 }
 
 /// Whether `words` name a room or building more often than not (its room and building
