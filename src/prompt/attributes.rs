@@ -336,6 +336,7 @@ pub(crate) fn modifier_at(
             } else {
                 crate::words::tokens::TokenKind::Word
             },
+            possessive: false,
         });
         if let Some(n) = n {
             let kind = if matches!(

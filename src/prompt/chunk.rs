@@ -296,7 +296,10 @@ pub(crate) fn chunk_sentence(
             }
         }
         match parse_np(lex, kb, tokens, i, end, sentence_start, in_list) {
-            Some((np, j)) if j > i => {
+            Some((mut np, j)) if j > i => {
+                if sensed_mass(&out, &np) {
+                    np.head = Head::NonObject;
+                }
                 out.push(Chunk {
                     item: Item::Np(Box::new(np)),
                     range: i..j,
@@ -319,6 +322,21 @@ pub(crate) fn chunk_sentence(
     }
     measures_of_variety(tokens, &mut out);
     out
+}
+
+/// "the smell of food", "a hint of lavender": a bare singular after "of" that follows a noun
+/// naming no thing is what is sensed or meant, not a thing in the room ("the sound of a clock"
+/// still places a clock).
+fn sensed_mass(out: &[Chunk], np: &Np) -> bool {
+    let [.., before, of] = out else {
+        return false;
+    };
+    matches!(of.item, Item::Of)
+        && matches!(&before.item, Item::Np(b) if matches!(b.head, Head::NonObject))
+        && !np.has_det()
+        && np.group.is_none()
+        && !np.plural
+        && matches!(np.head, Head::Object { .. })
 }
 
 /// Words that say the things before "of" differ in what follows ("hammers of different

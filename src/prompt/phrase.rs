@@ -1305,7 +1305,11 @@ fn ground_words(lex: &Lexicon, words: &[&str], evidence: Evidence) -> Result<Gro
         Some(f) => f,
         // A word no dictionary knows ("hoverboards") is a thing only where the phrase counts
         // or lists it; it stands in, and grounds nothing (see `Reading::understood`).
-        None if strong && !ground::is_word(last) && !lex.is_non_object(last) => {
+        None if strong
+            && !ground::is_word(last)
+            && !lex.is_non_object(last)
+            && !lex.is_function_word(last) =>
+        {
             return Ok(Grounded {
                 singular: lex.singular(last),
                 lemma: words.join(" "),
@@ -1822,6 +1826,16 @@ fn open_head(
     let named = k > phrase_start + 1 && tokens.get(k - 1).is_some_and(|t| t.capitalized());
     let plural_or_kind = name.len() >= 2 || lex.is_plural(last) || named;
     let known = matches!(np.det.as_deref(), Some("definite" | "possessive"));
+    // "at a moment's notice": the determiner counts a possessor that is a time, so the noun
+    // after it has only its own word to go on ("a day's newspaper" still names a paper, "a
+    // tailor's chalk" is a kind of chalk).
+    let evidence = if tokens[j..k.saturating_sub(1)].iter().any(|t| {
+        t.possessive && ground::noun_info(&t.text).is_some_and(|i| i.lexname == "noun.time")
+    }) {
+        Evidence::Weak
+    } else {
+        evidence
+    };
     let evidence = if evidence == Evidence::Strong
         && plural_or_kind
         && !known

@@ -1311,3 +1311,36 @@ fn each_subject_of_a_passive_gets_one_of_each() {
         r.mentions
     );
 }
+
+#[test]
+fn function_words_times_and_sensed_things_name_nothing() {
+    let r = read(
+        "The clubroom sits behind a café, and tonight, during the final round, the tension is \
+         palpable. A pair of boots waits by the door, ready at a moment's notice. The smell of \
+         food fills the room.",
+    );
+    let nouns: Vec<&str> = r.mentions.iter().map(|m| m.noun.as_str()).collect();
+    assert!(
+        nouns
+            .iter()
+            .all(|n| !n.contains("during") && !n.contains("notice") && *n != "food"),
+        "{nouns:?}"
+    );
+    assert!(nouns.contains(&"boot"), "{nouns:?}");
+    // A possessor that is a person or a thing still leaves a thing.
+    let r = read("A tailor's chalk and yesterday's newspaper lie on the table.");
+    assert!(mentions_of(&r, "newspaper") > 0, "{:?}", r.mentions);
+    assert!(
+        r.mentions.iter().any(|m| m.noun.ends_with("chalk")),
+        "{:?}",
+        r.mentions
+    );
+}
+
+#[test]
+fn plural_forms_and_counted_food() {
+    let r = read("A trolley is stocked with syringes, and the counter holds a jar of dog treats.");
+    let nouns: Vec<&str> = r.mentions.iter().map(|m| m.noun.as_str()).collect();
+    assert!(nouns.contains(&"syringe"), "{nouns:?}");
+    assert!(nouns.contains(&"dog treat"), "{nouns:?}");
+}

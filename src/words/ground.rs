@@ -253,8 +253,29 @@ pub fn noun_lemma(words: &str) -> Option<String> {
     if wn.is_lemma(&w, Pos::Noun) {
         return Some(w);
     }
-    wn.base_forms(&w, Pos::Noun).into_iter().next()
+    // "syringes" is also WordNet's plural of "syrinx": a room prompt names things, so the form
+    // most often placeable wins, and of forms about as placeable the more common one
+    // ("lenses": lens, not lense).
+    let rank = |lemma: &str| {
+        let share = noun_info(lemma).map_or(0.0, |i| i.share);
+        let count: u32 = wn.noun_senses(lemma).iter().map(|s| s.count).sum();
+        (share, count)
+    };
+    let mut best: Option<(f64, u32, String)> = None;
+    for form in wn.base_forms(&w, Pos::Noun) {
+        let (share, count) = rank(&form);
+        let better = best.as_ref().is_none_or(|(s, c, _)| {
+            share > s + NEAR_SHARE || (share > s - NEAR_SHARE && count > *c)
+        });
+        if better {
+            best = Some((share, count, form));
+        }
+    }
+    best.map(|(_, _, form)| form)
 }
+
+/// Placeable shares closer than this count as a tie between two base forms of a word.
+const NEAR_SHARE: f64 = 0.25;
 
 /// Whether the heaviest placeable sense of `words` pictures something (see
 /// [`Rules::depicts`]).
@@ -392,6 +413,15 @@ pub fn verdict(words: &str) -> Verdict {
         // sentence places it; "a love of poetry" places nothing.
         Some(info) if info.placeable.is_empty() && !info.documents.is_empty() => {
             Verdict::Rarely("written matter: a thing only where the sentence places it".to_string())
+        }
+        // "a jar of dog treats": food written in the plural is counted pieces, a thing where
+        // the phrase counts or lists them ("a love of food", "treat" alone name none).
+        Some(info)
+            if info.placeable.is_empty()
+                && info.lexname == "noun.food"
+                && words.rsplit(' ').next() != info.lemma.rsplit(' ').next() =>
+        {
+            Verdict::NeedsEvidence
         }
         Some(info) if info.placeable.is_empty() && info.structure => Verdict::NotObject(
             "a building, vessel or structure, or part of the architecture: nothing placed in \

@@ -29,6 +29,8 @@ pub struct Token {
     pub end: usize,
     /// Word, number or punctuation.
     pub kind: TokenKind,
+    /// True when written with a possessive "'s" ("a moment's notice"), which the text drops.
+    pub possessive: bool,
 }
 
 impl Token {
@@ -97,6 +99,7 @@ pub fn lex(text: &str) -> Vec<Token> {
                 start: i,
                 end: i + c.len_utf8(),
                 kind: TokenKind::Punct(c),
+                possessive: false,
             });
         }
     }
@@ -107,9 +110,11 @@ fn push_word(out: &mut Vec<Token>, text: &str, start: usize, end: usize) {
     let raw = &text[start..end];
     // Possessives and stray apostrophes/hyphens at the edges.
     let mut trimmed = raw;
+    let mut possessive = false;
     for suffix in ["'s", "'S", "\u{2019}s"] {
         if let Some(t) = trimmed.strip_suffix(suffix) {
             trimmed = t;
+            possessive = true;
         }
     }
     let lead = trimmed.len() - trimmed.trim_start_matches(['-', '\'']).len();
@@ -134,6 +139,7 @@ fn push_word(out: &mut Vec<Token>, text: &str, start: usize, end: usize) {
         start,
         end,
         kind,
+        possessive,
     });
 }
 
