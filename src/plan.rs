@@ -472,14 +472,24 @@ pub fn plan_rooms(reading: &Reading) -> Vec<RoomPlan> {
 /// Builds the plan of room `room` of a reading: the room's mentions merged with its room
 /// type's defaults.
 pub fn plan_house_room(reading: &Reading, room: usize) -> RoomPlan {
-    plan_room_of_house(reading, room, &[])
+    plan_room_of_house(reading, room, &HouseContext::default())
 }
 
-/// `plan_house_room`, where `elsewhere` lists the kinds (plan categories) the house's prompt
-/// counts exactly in other rooms: no default adds more of them ("the first bedroom holds
-/// two nightstands": the second bedroom gets none; "a vase of lilies" in the lobby: the
-/// corridor's console table holds no vases).
-pub fn plan_room_of_house(reading: &Reading, room: usize, elsewhere: &[String]) -> RoomPlan {
+/// What the whole prompt of a house says that one room's plan must honour.
+#[derive(Debug, Clone, Default)]
+pub struct HouseContext {
+    /// The kinds (plan categories) the house's prompt counts exactly in other rooms: no
+    /// default adds more of them ("the first bedroom holds two nightstands": the second
+    /// bedroom gets none; "a vase of lilies" in the lobby: the corridor's console table holds
+    /// no vases).
+    pub elsewhere: Vec<String>,
+    /// The kinds the house's prompt excludes anywhere ("There are no rugs anywhere in the
+    /// apartment"): no room adds them unless that room asks for them.
+    pub excluded: Vec<String>,
+}
+
+/// `plan_house_room`, with what the rest of the house's prompt says (see [`HouseContext`]).
+pub fn plan_room_of_house(reading: &Reading, room: usize, house: &HouseContext) -> RoomPlan {
     let lex = crate::words::lexicon();
     let kb = knowledge::knowledge();
     let info = reading.rooms.get(room);
@@ -504,7 +514,7 @@ pub fn plan_room_of_house(reading: &Reading, room: usize, elsewhere: &[String]) 
         },
         surface: Vec::new(),
         floor_of: BTreeMap::new(),
-        elsewhere,
+        house,
     };
     b.plan.styles.clone_from(&b.styles);
     b.explicit();
@@ -537,7 +547,7 @@ struct Builder<'a> {
     /// Default noun -> the explicit noun that covers it (for rule targets).
     floor_of: BTreeMap<String, String>,
     /// Kinds the house's prompt counts exactly in other rooms (`plan_room_of_house`).
-    elsewhere: &'a [String],
+    house: &'a HouseContext,
 }
 
 impl Builder<'_> {

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use super::brief::HouseBrief;
 use super::knowledge::{self, Role, knowledge};
 use crate::assets::procedural;
-use crate::plan::{Arrangement, RoomPlan, plan_house_room, plan_room_of_house};
+use crate::plan::{Arrangement, HouseContext, RoomPlan, plan_house_room, plan_room_of_house};
 use crate::prompt;
 use crate::scene::IdAllocator;
 
@@ -228,10 +228,22 @@ fn round1(v: f64) -> f64 {
 /// `house` is the house's whole prompt (`None` for one room): what it counts exactly in
 /// other rooms, no default of this room adds (`plan::plan_room_of_house`).
 pub fn room_plan(room_type: &str, room_prompt: &str, house: Option<&str>) -> RoomPlan {
-    let mut reading = prompt::read(room_prompt);
     let Some(house) = house else {
-        return plan_house_room(&reading, 0);
+        return plan_house_room(&prompt::read(room_prompt), 0);
     };
+    // One reader: a room of the house's brief is planned from the house's own reading, where
+    // every sentence was read in its context ("A seaside bed and breakfast with three guest
+    // rooms, each with a double bed" names no seaside bed in the guest room).
+    let whole = prompt::read(house);
+    let brief = super::brief::from_reading(house, &whole);
+    if brief.rooms.len() == whole.rooms.len()
+        && let Some(i) = (0..brief.rooms.len()).find(|&i| brief.room_prompt(i) == room_prompt)
+    {
+        let mut reading = whole;
+        reading.rooms[i].room_type = room_type.to_string();
+        return plan_room_of_house(&reading, i, &HouseContext::default());
+    }
+    let mut reading = prompt::read(room_prompt);
     reading.room_type = room_type.to_string();
     let i = reading
         .rooms
@@ -247,7 +259,8 @@ pub fn room_plan(room_type: &str, room_prompt: &str, house: Option<&str>) -> Roo
         .filter(|m| m.room == i)
         .map(|m| m.category.as_str())
         .collect();
-    let mut elsewhere: Vec<String> = prompt::read(house)
+    let house = whole;
+    let mut elsewhere: Vec<String> = house
         .mentions
         .iter()
         .filter(|m| !m.negated && matches!(m.count, prompt::Count::Exactly(_)))
@@ -256,7 +269,19 @@ pub fn room_plan(room_type: &str, room_prompt: &str, house: Option<&str>) -> Roo
         .collect();
     elsewhere.sort();
     elsewhere.dedup();
-    plan_room_of_house(&reading, i, &elsewhere)
+    let mut excluded: Vec<String> = house
+        .mentions
+        .iter()
+        .filter(|m| m.negated)
+        .flat_map(|m| [m.category.clone(), m.noun.clone()])
+        .collect();
+    excluded.sort();
+    excluded.dedup();
+    let context = HouseContext {
+        elsewhere,
+        excluded,
+    };
+    plan_room_of_house(&reading, i, &context)
 }
 
 /// Builds the house specification of a brief.
@@ -510,6 +535,68 @@ mod tests {
             "A pottery store with shelves along the walls. The shelves hold at least 30 cups and 30 bowls. There is a table with a large painted bowl.",
         ));
         assert!(store.rooms[0].size[1] > 3.0 && store.rooms[0].area() > 12.0);
+    }
+
+    /// The plans of every room of a house prompt, as the pipeline makes them.
+    fn house_plans(prompt: &str) -> Vec<RoomPlan> {
+        let b = brief::read(prompt);
+        (0..b.rooms.len())
+            .map(|i| room_plan(&b.rooms[i].room_type, &b.room_prompt(i), Some(&b.prompt)))
+            .collect()
+    }
+
+    #[test]
+    fn a_house_room_is_planned_from_the_house_reading() {
+        // Read alone, the guest room's text ("A seaside bed and breakfast with three guest
+        // rooms, each with a double bed") would name a seaside bed.
+        let plans = house_plans(
+            "A seaside bed and breakfast with three guest rooms, each with a double bed and a \
+             wicker armchair. Downstairs, the breakfast room has four small tables.",
+        );
+        let guest: Vec<&RoomPlan> = plans
+            .iter()
+            .filter(|p| p.room_type == "guest_bedroom" || p.room_type == "bedroom")
+            .collect();
+        assert_eq!(
+            guest.len(),
+            3,
+            "{:?}",
+            plans.iter().map(|p| &p.room_type).collect::<Vec<_>>()
+        );
+        for p in guest {
+            let beds: u32 = p
+                .furniture
+                .iter()
+                .filter(|w| w.noun == "bed")
+                .map(|w| w.count)
+                .sum();
+            assert_eq!(beds, 1, "{:?}", p.furniture);
+            assert!(
+                p.all_wants().all(|w| !w.description.contains("seaside")),
+                "{:?}",
+                p.furniture
+            );
+        }
+    }
+
+    #[test]
+    fn what_a_house_excludes_no_room_adds() {
+        // The negation names the kind ("lamps"): table, floor and ceiling lamps alike.
+        let plans = house_plans(
+            "A tiny two-room cottage: a kitchen with a wood stove, a table and two stools, and \
+             a bedroom with a brass bed. There are no lamps, only candles. There are no rugs \
+             anywhere in the cottage.",
+        );
+        for p in &plans {
+            for w in p.all_wants() {
+                assert!(
+                    !w.noun.contains("lamp") && !w.noun.contains("light") && w.noun != "rug",
+                    "{}: {}",
+                    p.room_type,
+                    w.noun
+                );
+            }
+        }
     }
 
     #[test]

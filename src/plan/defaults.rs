@@ -185,7 +185,7 @@ impl Builder<'_> {
             .into_iter()
             .flatten()
             .map(|m| m.category.as_str());
-        here.chain(self.elsewhere.iter().map(String::as_str))
+        here.chain(self.house.elsewhere.iter().map(String::as_str))
     }
 
     /// True when the prompt counts exactly the kind `noun` is in another room of the house

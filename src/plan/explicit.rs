@@ -34,7 +34,7 @@ impl Builder<'_> {
             .mentions
             .iter()
             .any(|m| !m.negated && matches!(m.count, Count::Exactly(_)) && fixes(&m.category))
-            || self.elsewhere.iter().any(|c| fixes(c))
+            || self.house.elsewhere.iter().any(|c| fixes(c))
     }
 
     /// Count of mention `i` in this plan: a plain count, or a per-parent count resolved
@@ -265,19 +265,30 @@ impl Builder<'_> {
     pub(super) fn explicit(&mut self) {
         let mentions: Vec<(usize, Mention)> =
             self.mentions().map(|(i, m)| (i, m.clone())).collect();
+        // "There are no lamps": the word as written excludes its whole kind (floor lamps and
+        // ceiling lights too), not only the lexicon's usual lamp.
         for (_, m) in mentions.iter().filter(|(_, m)| m.negated) {
-            if !self.plan.excluded.contains(&m.category) {
-                self.plan.excluded.push(m.category.clone());
+            for word in [&m.category, &m.noun] {
+                if !self.plan.excluded.contains(word) {
+                    self.plan.excluded.push(word.clone());
+                }
             }
         }
         // "Nobody has ever put a television in here" at the end of a house prompt: what one
         // room excludes, no other room adds by default, unless that room asks for it.
-        for m in self.reading.mentions.iter().filter(|m| m.negated) {
+        // The same for what the house's whole prompt excludes, when the room's own prompt is
+        // read alone.
+        let negated = self.reading.mentions.iter().filter(|m| m.negated);
+        let excluded = negated
+            .flat_map(|m| [&m.category, &m.noun])
+            .chain(&self.house.excluded)
+            .collect::<Vec<_>>();
+        for category in excluded {
             let asked_here = mentions
                 .iter()
-                .any(|(_, h)| !h.negated && covers(self.lex, &h.category, &m.category));
-            if !asked_here && !self.plan.excluded.contains(&m.category) {
-                self.plan.excluded.push(m.category.clone());
+                .any(|(_, h)| !h.negated && covers(self.lex, &h.category, category));
+            if !asked_here && !self.plan.excluded.contains(category) {
+                self.plan.excluded.push(category.clone());
             }
         }
         // Generic mentions that count specific ones: share the count out.
