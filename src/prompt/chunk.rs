@@ -132,6 +132,12 @@ pub(crate) fn chunk_sentence(
                 w,
                 "wishes" | "wish" | "wished" | "imagine" | "imagines" | "dreams"
             ) && matches!(next, Some("there" | "that" | "for" | "of" | "it" | "they")));
+        // "The owners have decided against televisions": what the verb rejects is not there.
+        if let Some(n) = lex.negating_verb_at(tokens, i) {
+            push(&mut out, Item::Without, n);
+            i += n;
+            continue;
+        }
         if imagined {
             let mut k = i + 1;
             while k < end && !matches!(tokens[k].kind, TokenKind::Punct(',' | ';' | ':')) {

@@ -1344,3 +1344,15 @@ fn plural_forms_and_counted_food() {
     assert!(nouns.contains(&"syringe"), "{nouns:?}");
     assert!(nouns.contains(&"dog treat"), "{nouns:?}");
 }
+
+#[test]
+fn verbs_that_reject_what_follows_negate_it() {
+    let r = read(
+        "A bed and breakfast with three guest rooms, each with a double bed. The owners have \
+         decided against televisions in the rooms. The kitchen is free of clutter, and they \
+         got rid of the rugs.",
+    );
+    assert!(find(&r, "tv").negated, "{:?}", r.mentions);
+    assert!(find(&r, "rug").negated, "{:?}", r.mentions);
+    assert!(!find(&r, "bed").negated, "{:?}", r.mentions);
+}

@@ -76,6 +76,7 @@ struct WordsFile {
     groups: HashMap<String, String>,
     group_suffixes: Vec<String>,
     negations: Vec<String>,
+    negating_verbs: HashMap<String, String>,
     prepositions: HashMap<String, String>,
     landmarks: HashMap<String, String>,
     verbs: HashMap<String, String>,
@@ -140,6 +141,7 @@ pub struct Lexicon {
     groups: HashMap<String, String>,
     group_suffixes: HashSet<String>,
     negations: HashSet<String>,
+    negating_verbs: HashMap<String, String>,
     prepositions: HashMap<String, String>,
     landmarks: HashMap<String, String>,
     verbs: HashMap<String, String>,
@@ -210,6 +212,7 @@ impl Lexicon {
             groups: w.groups,
             group_suffixes: set(w.group_suffixes),
             negations: set(w.negations),
+            negating_verbs: w.negating_verbs,
             prepositions: w.prepositions,
             landmarks: w.landmarks,
             verbs: w.verbs,
@@ -470,6 +473,13 @@ impl Lexicon {
     /// "no", "without", "not".
     pub fn is_negation(&self, word: &str) -> bool {
         self.negations.contains(word)
+    }
+
+    /// A verb phrase at `at` that rejects what follows it ("decided against televisions",
+    /// "got rid of the rugs"): the number of words it takes.
+    pub fn negating_verb_at(&self, tokens: &[Token], at: usize) -> Option<usize> {
+        self.phrase_at(&self.negating_verbs, tokens, at, 4)
+            .map(|(n, _)| n)
     }
 
     /// Landmark class (`wall`, `corner`, `center`, ...).
