@@ -221,12 +221,15 @@ fn round1(v: f64) -> f64 {
 }
 
 /// The furniture plan of a room prompt: the plan the placement stages build and the layout
-/// sizes the room for. In a house the room is typed as the layout typed it, and when its
-/// prompt still names other rooms of the house ("the clinic comprises a waiting room, two
-/// treatment rooms ..."), its contents are those the reader put in the room of that type.
+/// sizes the room for. In a house the room is typed as the layout typed it. When
+/// `room_prompt` is the brief's prompt of one of the house's rooms, the plan is that room's
+/// in the reading of the whole house. Otherwise the room prompt is read alone, and when it
+/// still names other rooms of the house ("the clinic comprises a waiting room, two treatment
+/// rooms ..."), its contents are those the reader put in the room of that type.
 ///
 /// `house` is the house's whole prompt (`None` for one room): what it counts exactly in
-/// other rooms, no default of this room adds (`plan::plan_room_of_house`).
+/// other rooms, or excludes anywhere, no default of this room adds
+/// (`plan::plan_room_of_house`).
 pub fn room_plan(room_type: &str, room_prompt: &str, house: Option<&str>) -> RoomPlan {
     let Some(house) = house else {
         return plan_house_room(&prompt::read(room_prompt), 0);
