@@ -768,4 +768,35 @@ mod tests {
         );
         assert_eq!(plan, plan_room(&r));
     }
+
+    #[test]
+    fn what_the_library_stands_on_the_floor_is_furniture() {
+        // A wood stove is a fireplace to the lexicon and a stove to the asset library: the
+        // wall stage cannot hang it.
+        let plan = plan_room(&prompt::read(
+            "A kitchen with a cast-iron wood stove and a fireplace.",
+        ));
+        assert!(plan.wall.iter().all(|w| w.noun != "fireplace"), "{plan:#?}");
+        assert!(plan.furniture.iter().any(|w| w.noun == "fireplace"));
+    }
+
+    #[test]
+    fn more_of_a_thing_describes_nothing() {
+        let plan = plan_room(&prompt::read(
+            "A music room with a music stand beside the piano. Two more music stands are \
+             folded in the corner, with an extra chair.",
+        ));
+        for w in plan.all_wants() {
+            assert!(
+                !w.description.contains("more") && !w.description.contains("extra"),
+                "{w:?}"
+            );
+        }
+        let stands: u32 = plan
+            .all_wants()
+            .filter(|w| w.noun == "music stand")
+            .map(|w| w.count)
+            .sum();
+        assert_eq!(stands, 3);
+    }
 }

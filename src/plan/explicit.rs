@@ -386,7 +386,10 @@ impl Builder<'_> {
                 }
                 // "a huge aquarium set into the wall": a floor thing with no wall-mounted kind
                 // stands against the wall.
-                Support::Wall if self.floor_thing_without_wall_kind(&m.category) => {
+                Support::Wall
+                    if self.floor_thing_without_wall_kind(&m.category)
+                        || built_on_the_floor(&want.description) =>
+                {
                     want.arrangement = Arrangement::AgainstWall;
                     self.plan.furniture.push(want);
                 }
@@ -507,12 +510,30 @@ fn same_build(a: &str, b: &str) -> bool {
 /// it; the stage builds the plan's noun for it where the router would read the name as
 /// something else (`StageState::route_asset`).
 fn named_description(m: &Mention) -> String {
-    if m.noun == m.category {
-        return m.description();
-    }
-    let name_words: Vec<&str> = m.noun.split(' ').collect();
+    let lex = crate::words::lexicon();
     let mut a = m.attributes.clone();
+    // "two more music stands" are music stands.
+    a.modifiers
+        .retain(|w| !lex.is_relative_quantity(&w.to_lowercase()));
+    if m.noun == m.category {
+        return a.describe(&m.category);
+    }
+    let name_words: Vec<&str> = m
+        .noun
+        .split(' ')
+        .filter(|w| !lex.is_relative_quantity(w))
+        .collect();
     a.modifiers
         .retain(|w| !name_words.contains(&w.to_lowercase().as_str()));
-    a.describe(&m.noun)
+    a.describe(&name_words.join(" "))
+}
+
+/// Whether the asset library builds `description` as a thing standing on the floor ("a
+/// cast-iron wood stove" is a stove): the wall stage cannot hang it, so it stands against a
+/// wall in the furniture stage.
+fn built_on_the_floor(description: &str) -> bool {
+    crate::assets::router::parse::main_categories(description)
+        .first()
+        .and_then(|c| crate::assets::procedural::prior(c))
+        .is_some_and(|p| p.support == crate::assets::procedural::SupportClass::Floor)
 }

@@ -31,6 +31,10 @@ pub use rooms::{Density, RoomReading, Scope};
 use crate::knowledge::knowledge;
 use crate::words::{Lexicon, Support, lexicon, tokens};
 
+/// Largest footprint (m²) of a floor thing that a piece the lexicon does not know may carry,
+/// or that is "in" a piece that is no container ("tattoo chairs sit in curtained-off
+/// stations": a chair is at a station, not on it).
+const CARRIED_M2: f64 = 0.15;
 /// What the reader took from a prompt.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Reading {
@@ -395,6 +399,16 @@ fn finish(
     }
     // Support from relations: on the wall, from the ceiling, on another object, or placed on
     // the floor of the room.
+    // Whether each mention can carry or hold another thing (a table, a shelf, a box; not "a
+    // station", a part of the room).
+    // `None` for a noun the lexicon does not know: that carries only small things.
+    let holders: Vec<Option<(bool, bool)>> = out
+        .iter()
+        .map(|m| {
+            lex.lookup(&m.category)
+                .map(|e| (e.holds || e.support == Support::Surface, e.container))
+        })
+        .collect();
     for m in &mut out {
         let explicit = |k: RelationKind, t: Target| {
             m.relations
@@ -410,11 +424,22 @@ fn finish(
             m.support = Support::Ceiling;
         } else if explicit(RelationKind::On, Target::Wall) || mounted {
             m.support = Support::Wall;
-        } else if m
-            .relations
-            .iter()
-            .any(|r| r.is_support() && r.kind != RelationKind::With)
-            && m.support == Support::Floor
+        } else if m.relations.iter().any(|r| {
+            r.is_support()
+                && r.kind != RelationKind::With
+                && r.target.mention().is_none_or(|t| {
+                    let small =
+                        || crate::assets::router::naming::footprint(&m.category) <= CARRIED_M2;
+                    match holders.get(t).copied().flatten() {
+                        // A big thing is in a container ("a chair in the station" is at it).
+                        Some((holds, container)) if r.kind == RelationKind::In => {
+                            container || (holds && small())
+                        }
+                        Some((holds, container)) => holds || container,
+                        None => small(),
+                    }
+                })
+        }) && m.support == Support::Floor
         {
             let parent_small = true;
             if parent_small

@@ -1036,8 +1036,10 @@ fn add_subject_rooms(lex: &Lexicon, sentences: &[Vec<Chunk>], st: &mut Structure
                 introduced_rooms(chunks, in_house)
                     .into_iter()
                     .filter(move |np| {
+                        // "... no mirrors anywhere in the lodge" after the rooms: the building
+                        // named again is the house, no room of it.
                         let before_list = list.is_some_and(|l| i < l);
-                        !(before_list
+                        !((before_list || np.is_definite())
                             && matches!(&np.head, Head::Room { key, words }
                                 if key == "room" && crate::words::ground::is_building(words)))
                     })

@@ -1356,3 +1356,48 @@ fn verbs_that_reject_what_follows_negate_it() {
     assert!(find(&r, "rug").negated, "{:?}", r.mentions);
     assert!(!find(&r, "bed").negated, "{:?}", r.mentions);
 }
+
+#[test]
+fn a_room_subject_with_an_aside_still_opens_its_room() {
+    let r = read(
+        "It consists of three rooms: a pantry, a kitchen and a front parlor. The kitchen is \
+         dominated by a scrubbed pine table. The parlor, by contrast, feels formal: a horsehair \
+         settee and a pump organ against the wall.",
+    );
+    let parlor = r
+        .rooms
+        .iter()
+        .position(|x| x.name == "parlor" || x.name == "front parlor")
+        .expect("a parlor");
+    assert_eq!(find(&r, "sofa").room, parlor, "{:?}", r.mentions);
+    assert_ne!(find(&r, "table").room, parlor, "{:?}", r.mentions);
+}
+
+#[test]
+fn the_building_named_again_is_no_room() {
+    let r = read(
+        "The old hunting lodge has a great hall and a gun room. The great hall has two sofas. \
+         There are no mirrors anywhere in the lodge.",
+    );
+    let names: Vec<&str> = r.rooms.iter().map(|x| x.name.as_str()).collect();
+    assert_eq!(r.rooms.len(), 2, "{names:?}");
+    // A great hall is the house's main room, not a corridor.
+    assert_eq!(r.rooms[0].room_type, "living_room", "{names:?}");
+    assert!(find(&r, "mirror").negated);
+}
+
+#[test]
+fn a_big_thing_in_a_piece_that_is_no_container_stands_on_the_floor() {
+    let r = read(
+        "A tattoo parlour. Two tattoo chairs sit in curtained-off stations. A small plant sits \
+         in the bookcase, and a vase stands on a plinth.",
+    );
+    assert_eq!(
+        find(&r, "chair").support,
+        Support::Floor,
+        "{:?}",
+        r.mentions
+    );
+    assert_eq!(find(&r, "small plant").support, Support::Surface);
+    assert_eq!(find(&r, "vase").support, Support::Surface);
+}

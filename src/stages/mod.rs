@@ -306,6 +306,18 @@ impl StageState {
         // another stage: the plan's noun decides ("fume hood": a range hood, not a hood to
         // wear), and a thing the plan itself puts here stays here (a basket on the floor).
         let mut planned_as = None;
+        // A small thing of no generator that the plan stands on the floor (the room's
+        // surfaces had no place for "a flour sack") keeps a small thing's size.
+        if category.is_none()
+            && self.kind == StageKind::Furniture
+            && self.planned_noun(description).is_some_and(|n| {
+                crate::words::lexicon()
+                    .lookup(&n)
+                    .is_some_and(|e| e.support == crate::words::lexicon::Support::Surface)
+            })
+        {
+            stage = Stage::for_support(SupportClass::Surface);
+        }
         if let (Some(first), Some(want)) = (category, self.kind.support())
             && let Some(prior) = procedural::prior(first)
             && !for_stage(&candidates, want)

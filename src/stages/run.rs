@@ -12,7 +12,7 @@ use crate::agents::{
     PlacementStyle, RunLog, StageConfig, StageSpec, StageSummary, Toolbox, run_stage,
 };
 use crate::plan::{Arrangement, RoomPlan, SurfaceWant, Want};
-use crate::scene::ObjectKind;
+use crate::scene::{ObjectKind, Support};
 use crate::state::SceneState;
 
 fn stage_config(kind: StageKind) -> StageConfig {
@@ -551,20 +551,22 @@ fn place_missing_on_floor(scene: SceneState, room: &str, plan: &RoomPlan) -> (Sc
         requests: 0,
     };
     let (tools, _) = tools_and_categories(StageKind::Furniture);
+    let stand = |state: &mut StageState, want: &Want| {
+        FLOOR_TOOLS.iter().any(|tool| {
+            tools
+                .call(
+                    state,
+                    crate::agents::Role::Designer,
+                    tool,
+                    serde_json::json!({"description": want.description}),
+                )
+                .is_ok()
+        })
+    };
     let mut placed = 0;
     for want in &missing {
         for _ in 0..want.count {
-            let ok = FLOOR_TOOLS.iter().any(|tool| {
-                tools
-                    .call(
-                        &mut state,
-                        crate::agents::Role::Designer,
-                        tool,
-                        serde_json::json!({"description": want.description}),
-                    )
-                    .is_ok()
-            });
-            if !ok {
+            if !stand(&mut state, want) && !make_room_for(&mut state, plan, want, &stand) {
                 tracing::info!("{room}: no floor space for {:?}", want.description);
                 break;
             }
@@ -572,6 +574,82 @@ fn place_missing_on_floor(scene: SceneState, room: &str, plan: &RoomPlan) -> (Sc
         }
     }
     (state.scene, placed)
+}
+
+/// Pieces of room default furniture tried in turn to make room for a thing the prompt asked
+/// for (each try rebuilds the room's floor map).
+const MAKE_ROOM_TRIES: usize = 6;
+
+/// Makes floor room for `want` by taking out one piece of furniture the prompt did not ask
+/// for (a pantry's default cabinet gives way to "a flour sack beside the butter churn"),
+/// smallest first, never one that carries something asked for; whether `want` now stands.
+/// The piece leaves no trace in the removals: it was a default the room no longer plans.
+fn make_room_for(
+    state: &mut StageState,
+    plan: &RoomPlan,
+    want: &Want,
+    stand: &dyn Fn(&mut StageState, &Want) -> bool,
+) -> bool {
+    let scene = &state.scene.scene;
+    let explicit: Vec<&Want> = plan
+        .furniture
+        .iter()
+        .chain(plan.surfaces.iter().flat_map(|g| g.items.iter()))
+        .filter(|w| w.explicit)
+        .collect();
+    let asked = |o: &crate::scene::SceneObject| {
+        explicit
+            .iter()
+            .any(|w| super::StageState::is_wanted(scene, w, o))
+    };
+    let carries_asked = |id: &str| {
+        let mut stack = vec![id.to_string()];
+        while let Some(p) = stack.pop() {
+            for o in &scene.objects {
+                if matches!(&o.support, Support::Object { parent, .. } if *parent == p) {
+                    if asked(o) {
+                        return true;
+                    }
+                    stack.push(o.id.clone());
+                }
+            }
+        }
+        false
+    };
+    let mut defaults: Vec<(String, f64)> = scene
+        .objects
+        .iter()
+        .filter(|o| o.room == state.room && o.kind == ObjectKind::Furniture)
+        .filter(|o| !asked(o) && !carries_asked(&o.id))
+        .map(|o| {
+            let [lo, hi] = scene
+                .assets
+                .get(&o.asset)
+                .map_or([[0.0; 3]; 2], |a| a.bounds);
+            (o.id.clone(), (hi[0] - lo[0]) * (hi[1] - lo[1]))
+        })
+        .collect();
+    // A piece much smaller than the thing cannot make room for it.
+    let needed = crate::assets::router::naming::footprint(&want.noun) / 2.0;
+    defaults.retain(|(_, area)| *area >= needed);
+    defaults.sort_by(|a, b| a.1.total_cmp(&b.1).then_with(|| a.0.cmp(&b.0)));
+    for (id, _) in defaults.into_iter().take(MAKE_ROOM_TRIES) {
+        let before = state.scene.clone();
+        state
+            .scene
+            .remove_object(&id, StageKind::Furniture.as_str(), "made room");
+        state.scene.scene.removed = before.scene.removed.clone();
+        if stand(state, want) {
+            tracing::info!(
+                "{}: {id} gave way to {:?}, asked for and with no floor space",
+                state.room,
+                want.description
+            );
+            return true;
+        }
+        state.scene = before;
+    }
+    false
 }
 
 /// Runs every placement stage of one room.

@@ -228,6 +228,10 @@ pub struct NounInfo {
     pub share: f64,
     /// Placeable senses, heaviest first.
     pub placeable: Vec<SynsetId>,
+    /// How many of the first `placeable` senses are the word's usual ones: when WordNet's
+    /// concordance tagged the heaviest, those tagged at least [`NEAR_SHARE`] as often as it
+    /// ("sack" is a bag; its untagged hammock sense is no usual reading); else all.
+    pub usual: usize,
     /// Whether a sense names a room or building.
     pub roomlike: bool,
     /// Weight of the room or building senses over all senses, 0..=1.
@@ -322,11 +326,21 @@ pub fn noun_info(words: &str) -> Option<NounInfo> {
         }
     }
     placeable.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    let top = placeable.first().map_or(0.0, |p| p.0 - r.count_smoothing);
+    let usual = if top > 0.0 {
+        placeable
+            .iter()
+            .take_while(|p| p.0 - r.count_smoothing >= NEAR_SHARE * top)
+            .count()
+    } else {
+        placeable.len()
+    };
     documents.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
     Some(NounInfo {
         lemma,
         share: if total > 0.0 { placed / total } else { 0.0 },
         placeable: placeable.into_iter().map(|(_, _, s)| s).collect(),
+        usual,
         roomlike,
         room_share: if total > 0.0 { roomed / total } else { 0.0 },
         lexname: heaviest.map_or_else(String::new, |(_, s)| wn.lexname(s).to_string()),
@@ -523,7 +537,7 @@ pub fn family(words: &str, known: &dyn Fn(&str) -> bool) -> Option<Family> {
         return None;
     }
     if !info.placeable.is_empty() {
-        return nearest(&info.lemma, &info.placeable, known);
+        return nearest(&info.lemma, &info.placeable[..info.usual], known);
     }
     let paper = &rules().document_family;
     nearest(&info.lemma, &info.documents, known).or_else(|| {
@@ -617,7 +631,7 @@ pub fn sense_in_company(
         return None;
     };
     let family = nearest(&info.lemma, &[chosen], known);
-    let alone = nearest(&info.lemma, &info.placeable, known);
+    let alone = nearest(&info.lemma, &info.placeable[..info.usual], known);
     if family.as_ref().map(|f| &f.noun) == alone.as_ref().map(|f| &f.noun) {
         return None;
     }
@@ -774,5 +788,18 @@ mod tests {
         assert_eq!(room_family("pharmacy", &known).unwrap().noun, "shop");
         assert!(room_family("chair", &known).is_none());
         assert!(rules().is_room_space_word("floor"));
+    }
+
+    #[test]
+    fn a_family_comes_from_the_usual_senses() {
+        // "sack": WordNet tags only its bag sense; its hammock sense (a bed) is no usual
+        // reading, so a flour sack is not built as a bed.
+        let known = |n: &str| ["bed", "bag"].contains(&n);
+        assert_eq!(family("sack", &known).unwrap().noun, "bag");
+        let beds_only = |n: &str| n == "bed";
+        assert!(family("sack", &beds_only).is_none());
+        // A word whose senses WordNet never tagged keeps them all.
+        let info = noun_info("samovar").unwrap();
+        assert_eq!(info.usual, info.placeable.len());
     }
 }

@@ -85,6 +85,10 @@ struct WordsFile {
     /// Pronouns, subordinators, auxiliaries and sentence adverbs: English's closed classes.
     closed_class: Vec<String>,
     conjunctions: Vec<String>,
+    /// Words that count against what is already there and describe nothing ("two more
+    /// music stands", "an extra chair").
+    #[serde(default)]
+    relative_quantity: Vec<String>,
     setting_nouns: Vec<String>,
     part_nouns: HashMap<String, String>,
     adjectives: Vec<String>,
@@ -149,6 +153,7 @@ pub struct Lexicon {
     relatives: HashSet<String>,
     closed_class: HashSet<String>,
     conjunctions: HashSet<String>,
+    relative_quantity: HashSet<String>,
     setting_nouns: HashSet<String>,
     part_nouns: HashMap<String, String>,
     adjectives: HashSet<String>,
@@ -220,6 +225,7 @@ impl Lexicon {
             relatives: set(w.relatives),
             closed_class: set(w.closed_class),
             conjunctions: set(w.conjunctions),
+            relative_quantity: set(w.relative_quantity),
             setting_nouns: set(w.setting_nouns),
             part_nouns: w.part_nouns,
             adjectives: set(w.adjectives),
@@ -505,6 +511,11 @@ impl Lexicon {
     /// "and", "or", "plus".
     pub fn is_conjunction(&self, word: &str) -> bool {
         self.conjunctions.contains(word)
+    }
+
+    /// "more", "extra", "additional": counts against what is there, describes nothing.
+    pub fn is_relative_quantity(&self, word: &str) -> bool {
+        self.relative_quantity.contains(word)
     }
 
     /// "people", "guests" (a table set for N people).

@@ -1016,6 +1016,12 @@ fn subject_verb_after(chunks: &[Chunk], k: usize) -> bool {
         match item(j) {
             Some(Item::Verb(..)) => return j > k + 1,
             Some(Item::Each) => j += 1,
+            // "The parlor, by contrast, feels formal": an aside between commas that names
+            // nothing.
+            Some(Item::Comma) if j == k + 1 => match aside_end(chunks, j) {
+                Some(end) => j = end + 1,
+                None => return false,
+            },
             Some(Item::Other(w)) if matches!(w.as_str(), "itself" | "themselves" | "alone") => {
                 j += 1
             }
@@ -1032,6 +1038,21 @@ fn subject_verb_after(chunks: &[Chunk], k: usize) -> bool {
         }
     }
     matches!(item(j), Some(Item::Verb(..)))
+}
+
+/// The closing comma of an aside that opens with the comma at `open` and names no thing
+/// (", by contrast,", ", however,", ", on the other hand,"): at most four chunks, each a
+/// preposition, a word of no class or a noun phrase that names nothing.
+fn aside_end(chunks: &[Chunk], open: usize) -> Option<usize> {
+    for j in open + 1..(open + 6).min(chunks.len()) {
+        match &chunks[j].item {
+            Item::Comma => return (j > open + 1).then_some(j),
+            Item::Prep(_) | Item::Other(_) => {}
+            Item::Np(np) if np.head == Head::NonObject => {}
+            _ => return None,
+        }
+    }
+    None
 }
 
 fn is_plural_count(c: Count) -> bool {

@@ -355,9 +355,9 @@ impl BuiltinFurnitureDesigner {
             .collect()
     }
 
-    /// The pieces present that count for `want`: what its noun names, except a piece named
-    /// after another item of the plan (a guest chair is no dental chair, though both are
-    /// built as chairs).
+    /// The pieces present that count for `want`: what was placed for it, and what its noun
+    /// names except a piece named after another item of the plan (a guest chair is no dental
+    /// chair, though both are built as chairs).
     fn present_for(state: &StageState, want: &Want, wants: &[Want]) -> Vec<String> {
         let own = crate::scene::sanitize_name(&want.noun);
         let others: Vec<String> = wants
@@ -365,11 +365,28 @@ impl BuiltinFurnitureDesigner {
             .map(|w| crate::scene::sanitize_name(&w.noun))
             .filter(|n| *n != own)
             .collect();
+        // Pieces of the same noun the prompt describes apart ("three wicker chairs, a hammock
+        // chair"): each description counts its own.
+        let own_description = crate::scene::sanitize_name(&want.description);
+        let described_apart: Vec<String> = wants
+            .iter()
+            .filter(|w| w.noun == want.noun)
+            .map(|w| crate::scene::sanitize_name(&w.description))
+            .filter(|d| *d != own_description)
+            .collect();
         Self::present(state, &want.noun)
             .into_iter()
             .filter(|id| {
                 state.scene.scene.object(id).is_none_or(|o| {
+                    // Placed for this want ("a cast-iron wood stove", a fireplace built as a
+                    // stove): it counts whatever it is built as.
+                    if o.planned.as_deref() == Some(want.noun.as_str()) {
+                        return true;
+                    }
                     let named = o.name.as_deref().map(crate::scene::sanitize_name);
+                    if named.as_ref().is_some_and(|n| described_apart.contains(n)) {
+                        return false;
+                    }
                     !others.contains(&o.category)
                         && named.is_none_or(|n| n == own || !others.contains(&n))
                 })
