@@ -582,7 +582,8 @@ const MAKE_ROOM_TRIES: usize = 6;
 
 /// Makes floor room for `want` by taking out one piece of furniture the prompt did not ask
 /// for (a pantry's default cabinet gives way to "a flour sack beside the butter churn"),
-/// smallest first, never one that carries something asked for; whether `want` now stands.
+/// the one nearest it in size first, never one that carries something asked for; whether
+/// `want` now stands.
 /// The piece leaves no trace in the removals: it was a default the room no longer plans.
 fn make_room_for(
     state: &mut StageState,
@@ -629,10 +630,10 @@ fn make_room_for(
             (o.id.clone(), (hi[0] - lo[0]) * (hi[1] - lo[1]))
         })
         .collect();
-    // A piece much smaller than the thing cannot make room for it.
-    let needed = crate::assets::router::naming::footprint(&want.noun) / 2.0;
-    defaults.retain(|(_, area)| *area >= needed);
-    defaults.sort_by(|a, b| a.1.total_cmp(&b.1).then_with(|| a.0.cmp(&b.0)));
+    // The piece nearest the thing in size first: likely to free its place, and no more.
+    let needed = crate::assets::router::naming::footprint(&want.noun);
+    let off = |area: f64| (area - needed).abs();
+    defaults.sort_by(|a, b| off(a.1).total_cmp(&off(b.1)).then_with(|| a.0.cmp(&b.0)));
     for (id, _) in defaults.into_iter().take(MAKE_ROOM_TRIES) {
         let before = state.scene.clone();
         state
@@ -820,5 +821,60 @@ mod tests {
         let shares = shares_per_host(&two, 2);
         assert_eq!(held(&shares[0], "fruit") + held(&shares[1], "fruit"), 3);
         assert!(held(&shares[0], "fruit") >= 1 && held(&shares[1], "fruit") >= 1);
+    }
+
+    #[test]
+    fn a_room_default_gives_way_to_an_asked_for_thing_with_no_floor_space() {
+        let prompt = "A small pantry.";
+        let mut log = RunLog::default();
+        let layout =
+            crate::layout::stage::run_layout(prompt, 1, &Backend::Builtin, &mut log).unwrap();
+        let mut scene = SceneState::new(crate::scene::Scene::new(prompt, 1, "layout"));
+        crate::state::install_rooms(&mut scene, &layout.rooms).unwrap();
+        let room = layout.rooms[0].id.clone();
+        // The room's defaults take every free stretch of floor.
+        let mut state = StageState {
+            scene,
+            kind: StageKind::Furniture,
+            room: room.clone(),
+            entity: None,
+            plan: Arc::new(RoomPlan::default()),
+            requests: 0,
+        };
+        let (tools, _) = tools_and_categories(StageKind::Furniture);
+        let mut defaults = 0;
+        while defaults < 40
+            && FLOOR_TOOLS.iter().any(|tool| {
+                tools
+                    .call(
+                        &mut state,
+                        crate::agents::Role::Designer,
+                        tool,
+                        serde_json::json!({"description": "cabinet"}),
+                    )
+                    .is_ok()
+            })
+        {
+            defaults += 1;
+        }
+        assert!(defaults > 0 && defaults < 40, "{defaults} cabinets");
+        let plan = RoomPlan {
+            furniture: vec![want("side table", Arrangement::Free)],
+            ..RoomPlan::default()
+        };
+        let (scene, placed) = place_missing_on_floor(state.scene, &room, &plan);
+        assert_eq!(placed, 1);
+        let count = |c: &str| {
+            scene
+                .scene
+                .objects
+                .iter()
+                .filter(|o| o.category == c)
+                .count()
+        };
+        assert_eq!(count("side_table"), 1);
+        assert_eq!(count("cabinet"), defaults - 1);
+        // A default that gave way is no removal to report.
+        assert!(scene.scene.removed.is_empty(), "{:?}", scene.scene.removed);
     }
 }
