@@ -532,8 +532,12 @@ fn named_description(m: &Mention) -> String {
 /// cast-iron wood stove" is a stove): the wall stage cannot hang it, so it stands against a
 /// wall in the furniture stage.
 fn built_on_the_floor(description: &str) -> bool {
+    use crate::assets::procedural::{SupportClass, prior, support_sibling};
+    // A kind with a wall-mounted sibling ("a cabinet on the wall": a wall cabinet) is hung.
     crate::assets::router::parse::main_categories(description)
         .first()
-        .and_then(|c| crate::assets::procedural::prior(c))
-        .is_some_and(|p| p.support == crate::assets::procedural::SupportClass::Floor)
+        .is_some_and(|c| {
+            prior(c).is_some_and(|p| p.support == SupportClass::Floor)
+                && support_sibling(c, SupportClass::Wall).is_none()
+        })
 }

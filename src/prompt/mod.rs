@@ -31,10 +31,29 @@ pub use rooms::{Density, RoomReading, Scope};
 use crate::knowledge::knowledge;
 use crate::words::{Lexicon, Support, lexicon, tokens};
 
-/// Largest footprint (m²) of a floor thing that a piece the lexicon does not know may carry,
-/// or that is "in" a piece that is no container ("tattoo chairs sit in curtained-off
-/// stations": a chair is at a station, not on it).
-const CARRIED_M2: f64 = 0.15;
+/// A floor thing that carries things or is sat or slept on, by the lexicon: no other piece
+/// carries it, and it is "in" only a container ("tattoo chairs sit in curtained-off stations":
+/// a chair is at a station, not on it).
+fn piece_of_furniture(lex: &Lexicon, noun: &str) -> bool {
+    let Some(e) = lex.lookup(noun) else {
+        return false;
+    };
+    if e.support != Support::Floor {
+        return false;
+    }
+    if e.holds {
+        return true;
+    }
+    let mut kind = e.kind_of.clone();
+    for _ in 0..4 {
+        match kind {
+            Some(k) if k == "seating" || k == "bed" => return true,
+            Some(k) => kind = lex.lookup(&k).and_then(|x| x.kind_of.clone()),
+            None => return false,
+        }
+    }
+    false
+}
 /// What the reader took from a prompt.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Reading {
@@ -428,8 +447,7 @@ fn finish(
             r.is_support()
                 && r.kind != RelationKind::With
                 && r.target.mention().is_none_or(|t| {
-                    let small =
-                        || crate::assets::router::naming::footprint(&m.category) <= CARRIED_M2;
+                    let small = || !piece_of_furniture(lex, &m.category);
                     match holders.get(t).copied().flatten() {
                         // A big thing is in a container ("a chair in the station" is at it).
                         Some((holds, container)) if r.kind == RelationKind::In => {
