@@ -384,18 +384,7 @@ fn covers(lex: &Lexicon, a: &str, b: &str) -> bool {
     if a == b {
         return true;
     }
-    let is_kind = |x: &str, of: &str| {
-        let mut k = lex.lookup(x).and_then(|e| e.kind_of.clone());
-        for _ in 0..3 {
-            match k {
-                Some(ref y) if y == of => return true,
-                Some(ref y) => k = lex.lookup(y).and_then(|e| e.kind_of.clone()),
-                None => return false,
-            }
-        }
-        false
-    };
-    is_kind(a, b) || is_kind(b, a)
+    lex.is_kind(a, b) || lex.is_kind(b, a)
 }
 
 /// Appliances, electronics, lamps, mirrors and clocks: one per supporting piece unless the

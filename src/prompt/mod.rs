@@ -41,19 +41,9 @@ fn piece_of_furniture(lex: &Lexicon, noun: &str) -> bool {
     if e.support != Support::Floor {
         return false;
     }
-    if e.holds {
-        return true;
-    }
-    let mut kind = e.kind_of.clone();
-    for _ in 0..4 {
-        match kind {
-            Some(k) if k == "seating" || k == "bed" => return true,
-            Some(k) => kind = lex.lookup(&k).and_then(|x| x.kind_of.clone()),
-            None => return false,
-        }
-    }
-    false
+    e.holds || lex.is_kind(noun, "seating") || lex.is_kind(noun, "bed")
 }
+
 /// What the reader took from a prompt.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Reading {
@@ -416,11 +406,9 @@ fn finish(
             m.per = None;
         }
     }
-    // Support from relations: on the wall, from the ceiling, on another object, or placed on
-    // the floor of the room.
     // Whether each mention can carry or hold another thing (a table, a shelf, a box; not "a
-    // station", a part of the room).
-    // `None` for a noun the lexicon does not know: that carries only small things.
+    // station", a part of the room). `None` for a noun the lexicon does not know: that carries
+    // only small things.
     let holders: Vec<Option<(bool, bool)>> = out
         .iter()
         .map(|m| {
@@ -428,6 +416,8 @@ fn finish(
                 .map(|e| (e.holds || e.support == Support::Surface, e.container))
         })
         .collect();
+    // Support from relations: on the wall, from the ceiling, on another object, or placed on
+    // the floor of the room.
     for m in &mut out {
         let explicit = |k: RelationKind, t: Target| {
             m.relations

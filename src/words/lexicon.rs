@@ -302,6 +302,20 @@ impl Lexicon {
         })
     }
 
+    /// Whether `noun` is a kind of `of` along the lexicon's `kind_of` chain (at most four steps:
+    /// "armchair" -> "chair" -> "seating").
+    pub fn is_kind(&self, noun: &str, of: &str) -> bool {
+        let mut kind = self.lookup(noun).and_then(|e| e.kind_of.as_deref());
+        for _ in 0..4 {
+            match kind {
+                Some(k) if k == of => return true,
+                Some(k) => kind = self.lookup(k).and_then(|e| e.kind_of.as_deref()),
+                None => return false,
+            }
+        }
+        false
+    }
+
     /// Index of an entry by spelling.
     pub fn entry_index(&self, spelling: &str) -> Option<usize> {
         self.spellings.get(spelling).copied()
