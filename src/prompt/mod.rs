@@ -34,7 +34,7 @@ use crate::words::{Lexicon, Support, lexicon, tokens};
 /// A floor thing that carries things or is sat or slept on, by the lexicon: no other piece
 /// carries it, and it is "in" only a container ("tattoo chairs sit in curtained-off stations":
 /// a chair is at a station, not on it).
-fn piece_of_furniture(lex: &Lexicon, noun: &str) -> bool {
+pub(crate) fn piece_of_furniture(lex: &Lexicon, noun: &str) -> bool {
     let Some(e) = lex.lookup(noun) else {
         return false;
     };

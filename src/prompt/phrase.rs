@@ -91,6 +91,8 @@ pub(crate) struct Np {
     pub ordinal: Option<u32>,
     /// "a stack of", "pairs of".
     pub group: Option<GroupKind>,
+    /// The number of sets written before "sets of" ("two sets of bunk beds").
+    pub sets: Option<u32>,
     /// "arrangement", "set-up" after the noun.
     pub group_suffix: bool,
     /// "no TV", "not a single chair".
@@ -233,6 +235,7 @@ pub(crate) fn blank_np() -> Np {
         plus: false,
         ordinal: None,
         group: None,
+        sets: None,
         group_suffix: false,
         negated: false,
         other: false,
@@ -438,6 +441,9 @@ impl<'a> Phrase<'a> {
             }
         } else if np.group != Some(GroupKind::Pair) {
             // "a stack of books": the count is of the books, not of stacks.
+            if kind == GroupKind::Set {
+                np.sets = np.number;
+            }
             np.number = None;
             if np.det.as_deref() == Some("indefinite") {
                 np.det = None;

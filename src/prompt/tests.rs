@@ -64,6 +64,16 @@ fn punctuation_scopes_numbers() {
 }
 
 #[test]
+fn a_set_of_furniture_is_one_piece_a_set_of_small_things_is_several() {
+    let r = read(
+        "A dorm room with two sets of bunk beds, two sets of dumbbells and a set of 6 glasses.",
+    );
+    assert_eq!(find(&r, "bunk bed").count, Count::Exactly(2));
+    assert_eq!(find(&r, "dumbbell").count, Count::Several);
+    assert_eq!(find(&r, "glass").count, Count::Exactly(6));
+}
+
+#[test]
 fn count_forms() {
     let r = read(
         "A closet with exactly 5 pairs of shoes, a pair of scissors, a stack of 8 books, a dozen eggs, 10+ hats and more than 11 bowls.",

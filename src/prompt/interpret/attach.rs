@@ -226,6 +226,18 @@ impl Interp<'_> {
             if !about.is_empty() {
                 c.focus = about;
             }
+            // "four benches, each with two stools, arranged in rows facing a whiteboard": a
+            // participle after the per-parent list places the parents; what follows is not
+            // per parent.
+            if let Ctx::Each(parents) = &c.ctx
+                && class == "locate"
+                && k > 0
+                && chunks[k - 1].item == Item::Comma
+            {
+                c.focus = parents.clone();
+                c.ctx = Ctx::Room;
+                c.stack.clear();
+            }
             if c.verb.is_none() && c.subject.is_empty() && !c.subject_is_room {
                 c.verb = Some(class.to_string());
             }

@@ -4,6 +4,7 @@
 use super::{Clause, Ctx, Interp, Intro, Ref, is_plural_count};
 use crate::prompt::chunk::{Chunk, Head, Item, Np, Pronoun};
 use crate::prompt::mentions::{Count, GroupKind, Mention, Per, phrase_count};
+use crate::prompt::piece_of_furniture;
 use crate::prompt::relations::{Relation, RelationKind, Target, normalize};
 use crate::words::lexicon::{Lexicon, Support};
 
@@ -523,6 +524,12 @@ impl Interp<'_> {
                 Count::AtLeast(_) => Count::AtLeast(n),
                 _ => Count::Exactly(n),
             };
+        }
+        // "two sets of bunk beds": a set of pieces of furniture is one piece.
+        if let Some(sets) = np.sets
+            && noun.is_some_and(|n| piece_of_furniture(self.lex, n))
+        {
+            count = Count::Exactly(sets);
         }
         if np.number.is_some() && np.quant.is_none() && !np.plus && c.carry_at_least {
             count = Count::AtLeast(count.minimum());
