@@ -1411,3 +1411,14 @@ fn a_big_thing_in_a_piece_that_is_no_container_stands_on_the_floor() {
     assert_eq!(find(&r, "small plant").support, Support::Surface);
     assert_eq!(find(&r, "vase").support, Support::Surface);
 }
+
+#[test]
+fn a_participle_after_an_each_list_places_the_parents() {
+    let r = read(
+        "A lab with four benches, each with two stools and a burner, arranged in rows facing a \
+         whiteboard at the front.",
+    );
+    assert!(matches!(find(&r, "stool").per, Some(Per::Each { .. })));
+    let board = find(&r, "whiteboard");
+    assert_eq!((board.count, board.per), (Count::Exactly(1), None));
+}
