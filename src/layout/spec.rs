@@ -583,6 +583,31 @@ mod tests {
     }
 
     #[test]
+    fn what_a_house_counts_in_one_room_no_other_room_adds() {
+        // The house's one armchair and two bookshelves are the ones the prompt placed; the
+        // living room keeps its sofa (the piece that makes it) and the playroom its toy box.
+        let plans = house_plans(
+            "A family home with a living room, a playroom, a master bedroom and two children's \
+             bedrooms. The living room has a sectional sofa. The master bedroom has a king bed, \
+             two reading lamps and a rattan armchair. Each children's bedroom has a bunk bed, a \
+             desk and a bookshelf.",
+        );
+        let count = |noun: &str| -> u32 {
+            plans
+                .iter()
+                .flat_map(|p| p.furniture.iter())
+                .filter(|w| w.noun == noun)
+                .map(|w| w.count)
+                .sum()
+        };
+        assert_eq!(count("armchair"), 1);
+        assert_eq!(count("bookshelf"), 2);
+        assert_eq!(count("desk"), 2, "reading lamps stand on the nightstands");
+        let living = plans.iter().find(|p| p.room_type == "living_room");
+        assert!(living.is_some_and(|p| p.furniture.iter().any(|w| w.noun.ends_with("sofa"))));
+    }
+
+    #[test]
     fn what_a_house_excludes_no_room_adds() {
         // The negation names the kind ("lamps"): table and floor lamps alike. A ceiling light is
         // no lamp (WordNet files chandeliers and ceiling fixtures under lighting fixtures).

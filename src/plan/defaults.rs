@@ -217,18 +217,15 @@ impl Builder<'_> {
         let add = |b: &mut Self, item: &KbItem, support: Support, own: &mut Vec<String>| {
             // An optional piece whose first home is another room of the house stays there.
             // So does an optional piece the prompt counts in another room.
-            // So does an accessory of another piece (nightstands by the bed) that the prompt
-            // counts in another room; a piece that makes the room (its bed, its toilet) and a
-            // table's seats stay.
-            let accessory = item
-                .place
-                .as_ref()
-                .is_some_and(|p| place_to_arrangement(p).target().is_some());
+            // So does any other piece the prompt counts exactly in another room (the house's
+            // "two armchairs" are the ones it placed): only the piece that makes the room (its
+            // first, the bed, the toilet) and a table's seats stay.
+            let anchor = rt.furniture.first().is_some_and(|f| f.noun == item.noun);
             if b.excluded(&item.noun)
                 || (item.count[0] == 0
                     && (b.hosted_elsewhere(&item.noun) || b.named_elsewhere(&item.noun)))
-                || (accessory
-                    && !super::is_seat(lex, &item.noun)
+                || (!anchor
+                    && !super::is_table_seat(lex, &item.noun)
                     && b.counted_elsewhere(&item.noun))
             {
                 return;
