@@ -1422,3 +1422,14 @@ fn a_participle_after_an_each_list_places_the_parents() {
     let board = find(&r, "whiteboard");
     assert_eq!((board.count, board.per), (Count::Exactly(1), None));
 }
+
+#[test]
+fn the_larger_one_within_an_each_sentence_picks_one_room() {
+    // "also" between the pick and its verb; "larger" is a WordNet lemma of its own.
+    let r = read(
+        "The flat has a kitchen and two bedrooms. Each bedroom has a single bed, and the larger \
+         one also holds a dresser.",
+    );
+    assert_eq!(rooms_of(&r, "bed").len(), 2);
+    assert_eq!(rooms_of(&r, "dresser").len(), 1);
+}

@@ -372,6 +372,31 @@ pub fn adjective_base(word: &str) -> Option<String> {
     wordnet().base_forms(word, Pos::Adj).into_iter().next()
 }
 
+/// A comparative or superlative of an adjective ("larger", "biggest", "happier"): WordNet's
+/// exception list, else the adjective left when "-er"/"-est" comes off ("large", "big",
+/// "happy"). WordNet lists some comparatives as lemmas of their own ("larger").
+pub fn is_graded_adjective(word: &str) -> bool {
+    if adjective_base(word).is_some_and(|b| b != word) {
+        return true;
+    }
+    let stem = word
+        .strip_suffix("est")
+        .or_else(|| word.strip_suffix("er"))
+        .filter(|s| s.len() >= 2);
+    let Some(stem) = stem else {
+        return false;
+    };
+    let mut candidates = vec![stem.to_string(), format!("{stem}e")];
+    let b = stem.as_bytes();
+    if b.len() >= 3 && b[b.len() - 1] == b[b.len() - 2] {
+        candidates.push(stem[..stem.len() - 1].to_string());
+    }
+    if let Some(s) = stem.strip_suffix('i') {
+        candidates.push(format!("{s}y"));
+    }
+    candidates.iter().any(|c| is_adjective(c))
+}
+
 /// The part of speech a word has when it is not a noun ("stylish": adjective, "creating":
 /// verb, "dimly": adverb); `None` for nouns and for words WordNet does not know.
 pub fn only_other_pos(word: &str) -> Option<&'static str> {
@@ -752,6 +777,16 @@ mod tests {
         assert!(family("unease", &known).is_none());
         // Never above the stop synsets: nothing is a kind of "artifact" here.
         assert!(family("chandelier", &|n: &str| n == "artifact").is_none());
+    }
+
+    #[test]
+    fn graded_adjectives_by_exception_or_by_their_base() {
+        for w in ["larger", "biggest", "happier", "older", "smaller"] {
+            assert!(is_graded_adjective(w), "{w}");
+        }
+        for w in ["other", "another", "water", "corner", "best-seller"] {
+            assert!(!is_graded_adjective(w), "{w}");
+        }
     }
 
     #[test]

@@ -832,11 +832,20 @@ impl<'a> Interp<'a> {
         }
         // "one has ..., the other ...": only right after the rooms, before any other plural
         // phrase that "one" could pick from; "the other" only after "one" picked a room.
+        // "the larger one" picks a room whatever came between.
         let plural_since = self.mentions[self.group_at.min(self.mentions.len())..]
             .iter()
             .any(|m| is_plural_count(m.count));
+        let words: Vec<String> = self.tokens[chunk.range.clone()]
+            .iter()
+            .filter(|t| t.is_word())
+            .map(|t| t.text.to_lowercase())
+            .collect();
+        let graded = |w: &String| crate::words::ground::is_graded_adjective(w);
         match np.head {
-            Head::Pronoun(Pronoun::One) if plural_since => return None,
+            Head::Pronoun(Pronoun::One) if plural_since && !words.iter().any(graded) => {
+                return None;
+            }
             Head::Pronoun(Pronoun::Other) if self.picked.is_empty() => return None,
             _ => {}
         }
@@ -844,11 +853,6 @@ impl<'a> Interp<'a> {
             Some(Item::Np(n)) => n.number,
             _ => None,
         });
-        let words: Vec<String> = self.tokens[chunk.range.clone()]
-            .iter()
-            .filter(|t| t.is_word())
-            .map(|t| t.text.to_lowercase())
-            .collect();
         let open: Vec<usize> = self
             .room_group
             .iter()
@@ -857,10 +861,6 @@ impl<'a> Interp<'a> {
             .collect();
         let has = |w: &str| words.iter().any(|x| x == w);
         let rest = np.other || has("others") || has("remaining") || has("rest");
-        let graded = |w: &String| {
-            (w.ends_with("est") || w.ends_with("er"))
-                && crate::words::ground::adjective_base(w).is_some_and(|b| b != *w)
-        };
         let picked: Vec<usize> = if rest && !has("another") {
             let n = number.map_or(open.len(), |n| n as usize);
             open.into_iter().take(n).collect()
@@ -1016,6 +1016,8 @@ fn subject_verb_after(chunks: &[Chunk], k: usize) -> bool {
         match item(j) {
             Some(Item::Verb(..)) => return j > k + 1,
             Some(Item::Each) => j += 1,
+            // "the larger one also holds": "also" and "then" read as conjunctions.
+            Some(Item::And) if matches!(item(j + 1), Some(Item::Verb(..))) => j += 1,
             // "The parlor, by contrast, feels formal": an aside between commas that names
             // nothing.
             Some(Item::Comma) if j == k + 1 => match aside_end(chunks, j) {
