@@ -303,7 +303,7 @@ pub(crate) fn chunk_sentence(
         }
         match parse_np(lex, kb, tokens, i, end, sentence_start, in_list) {
             Some((mut np, j)) if j > i => {
-                if sensed_mass(&out, &np) {
+                if sensed_mass(&out, &np) || predicate_adjective(tokens, j, &out, &np) {
                     np.head = Head::NonObject;
                 }
                 out.push(Chunk {
@@ -343,6 +343,35 @@ fn sensed_mass(out: &[Chunk], np: &Np) -> bool {
         && np.group.is_none()
         && !np.plural
         && matches!(np.head, Head::Object { .. })
+}
+
+/// "A coal forge glows orange", "the shutters are painted cream": a lone bare word right after
+/// a verb that takes no object as its thing, which WordNet also reads as an adjective and no
+/// list continues, is how the subject looks, not a thing ("the shelf holds cream" still has
+/// cream: a verb of having takes things).
+fn predicate_adjective(tokens: &[Token], end: usize, out: &[Chunk], np: &Np) -> bool {
+    let Some(Chunk {
+        item: Item::Verb(class, _),
+        ..
+    }) = out.last()
+    else {
+        return false;
+    };
+    let Head::Object { noun, .. } = &np.head else {
+        return false;
+    };
+    let listed = matches!(word(tokens, end), Some("and" | "or"))
+        || matches!(
+            tokens.get(end).map(|t| &t.kind),
+            Some(TokenKind::Punct(','))
+        );
+    !matches!(class.as_str(), "possess" | "display" | "fill_with")
+        && !np.has_det()
+        && !np.plural
+        && !noun.contains(' ')
+        && np.attrs.modifiers.is_empty()
+        && ground::is_adjective(noun)
+        && !listed
 }
 
 /// Words that say the things before "of" differ in what follows ("hammers of different

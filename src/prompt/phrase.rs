@@ -636,7 +636,7 @@ impl<'a> Phrase<'a> {
         if let Some(next) = self.feature_or_non_object_head(np, before, w) {
             return Some(next);
         }
-        if (before.evidence || self.in_list)
+        if (before.evidence || self.in_list || self.bare_plural_thing(j))
             && let Some(next) = self.open_vocabulary_head(np, before)
         {
             return Some(next);
@@ -696,6 +696,18 @@ impl<'a> Phrase<'a> {
             && (lex.is_ambiguous_bare(w) || predicate || self.coordinated_adjective(w, j))
             && !evidence
             && !self.in_list
+    }
+
+    /// "Tongs of every shape hang from a rack", "Skeins of yarn fill the shelf": a bare plural
+    /// that begins its phrase and that WordNet reads as a placeable thing wherever it heads
+    /// one is that thing, as a plural subject or object without a determiner usually is.
+    fn bare_plural_thing(&self, j: usize) -> bool {
+        j == self.start
+            && self.at(j).is_some_and(|w| {
+                let plural =
+                    self.lex.is_plural(w) || (self.lex.plurale_tantum(w) && !w.ends_with("ss"));
+                plural && ground::verdict(w) == ground::Verdict::Object
+            })
     }
 
     /// "Compact but efficient, this laundry room ...": a bare word WordNet also reads as an
@@ -1016,7 +1028,9 @@ impl<'a> Phrase<'a> {
         w: &str,
     ) -> Option<usize> {
         let (lex, j) = (self.lex, before.j);
-        if let Some(class) = lex.landmark(w) {
+        if let Some(class) = lex.landmark(w)
+            && !(j + 1 < self.end && landmark_before_thing(lex, self.tokens, j))
+        {
             // "the front wall", "the back corner": the last landmark word is the head.
             if let Some(next) = self.at(j + 1)
                 && let Some(c2) = lex.landmark(next)
@@ -1390,7 +1404,7 @@ fn compound_word(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], k: usize) -> b
         return false;
     };
     !lex.is_function_word(x)
-        && lex.landmark(x).is_none()
+        && (lex.landmark(x).is_none() || landmark_before_thing(lex, tokens, k))
         && lex.preposition_at(tokens, k).is_none()
         && lex.verb(x).is_none()
         && lex.number(&tokens[k]).is_none()
@@ -1399,6 +1413,31 @@ fn compound_word(lex: &Lexicon, kb: &Knowledge, tokens: &[Token], k: usize) -> b
         && kb.room_type_at(tokens, k).is_none()
         && x.chars().all(|c| c.is_alphabetic() || c == '-')
         && !matches!(ground::only_other_pos(x), Some("verb" | "adverb"))
+}
+
+/// A noun WordNet has only in the plural ("tongs", "pliers"); not "glass" or "grass", whose
+/// lemma ends in -ss.
+fn plural_only(lex: &Lexicon, w: &str) -> bool {
+    lex.plurale_tantum(w) && !w.ends_with("ss")
+}
+
+/// "a floor loom", "a wall tapestry": a singular landmark word at `k` before a noun WordNet
+/// reads as a placeable thing, which is no verb there (no determiner or number follows it),
+/// says where the thing stands or hangs; the thing is the head.
+fn landmark_before_thing(lex: &Lexicon, tokens: &[Token], k: usize) -> bool {
+    let (Some(w), Some(next)) = (word(tokens, k), word(tokens, k + 1)) else {
+        return false;
+    };
+    let verb_next = word(tokens, k + 2).is_some_and(|x| lex.determiner(x).is_some())
+        || tokens.get(k + 2).is_some_and(|t| lex.number(t).is_some());
+    lex.landmark(w).is_some()
+        && !lex.is_plural(w)
+        && lex.landmark(next).is_none()
+        && lex.part(next).is_none()
+        && lex.verb(next).is_none()
+        && lex.preposition_at(tokens, k + 1).is_none()
+        && !verb_next
+        && ground::verdict(next) == ground::Verdict::Object
 }
 
 /// Length of a compound noun WordNet knows as written (2 or 3 words, the last possibly plural)
@@ -1717,6 +1756,15 @@ fn open_head(
         {
             break;
         }
+        // "Skeins of yarn fill the shelf": a word WordNet knows as a verb with a determiner or
+        // number right after it is that verb; no compound noun runs into a determiner.
+        if k > j
+            && crate::words::wordnet::wordnet().has_pos(x, crate::words::wordnet::Pos::Verb)
+            && (word(tokens, k + 1).is_some_and(|n| lex.determiner(n).is_some())
+                || tokens.get(k + 1).is_some_and(|t| lex.number(t).is_some()))
+        {
+            break;
+        }
         // "a heavy iron mount dominates": after modifiers, a noun in its base form that the
         // verb table also lists ends the phrase as its noun; a singular subject's verb would
         // end in -s.
@@ -1802,7 +1850,7 @@ fn open_head(
         && np.quant.is_none()
         && np.group.is_none()
         && !np.negated;
-    let singular = ground::noun_lemma(last).is_some_and(|l| l == last);
+    let singular = ground::noun_lemma(last).is_some_and(|l| l == last) && !plural_only(lex, last);
     // "elegant and formal", "adds greenery": a bare word that is also an adjective, or a
     // bare singular outside a list, names no object.
     let bare_reason = if bare && ground::is_adjective(last) {

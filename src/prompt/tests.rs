@@ -1433,3 +1433,44 @@ fn the_larger_one_within_an_each_sentence_picks_one_room() {
     assert_eq!(rooms_of(&r, "bed").len(), 2);
     assert_eq!(rooms_of(&r, "dresser").len(), 1);
 }
+
+#[test]
+fn enclosures_that_stand_in_a_room_are_things_not_rooms() {
+    // WordNet files cages, playpens, aquariums and furnaces under enclosure, an area of a
+    // structure; they stand in the room.
+    let r = read("The studio has a kiln, a birdcage, a playpen and an aquarium.");
+    assert_eq!(r.rooms.len(), 1);
+    for cat in ["kiln", "bird cage", "playpen", "aquarium"] {
+        assert_eq!(find(&r, cat).count, Count::Exactly(1), "{cat}");
+    }
+}
+
+#[test]
+fn a_colour_after_a_verb_that_takes_no_thing_is_how_the_subject_looks() {
+    let r = read("In the smithy a coal forge glows orange at the back. A bowl holds an orange.");
+    assert_eq!(mentions_of(&r, "orange"), 1);
+    assert!(r.mentions.iter().any(|m| m.noun.contains("forge")));
+}
+
+#[test]
+fn a_landmark_word_before_a_thing_says_where_it_stands() {
+    let r = read("A great floor loom takes up most of the space. The floor holds a rug.");
+    assert!(r.mentions.iter().any(|m| m.noun.ends_with("floor loom")));
+    assert_eq!(find(&r, "rug").count, Count::Exactly(1));
+    assert_eq!(r.mentions.len(), 2, "{:?}", r.mentions);
+}
+
+#[test]
+fn a_bare_plural_subject_wordnet_reads_as_a_thing_is_one() {
+    // Pluralia tantum too ("tongs"); a verb before a determiner ends the compound ("yarn
+    // fill the shelf" is no noun).
+    let r =
+        read("Tongs of every shape hang from a rack on the wall. Skeins of yarn fill the shelf.");
+    assert!(
+        r.mentions.iter().any(|m| m.category == "tongs"),
+        "{:?}",
+        r.mentions
+    );
+    assert_eq!(find(&r, "skein").count, Count::Several);
+    assert!(!r.mentions.iter().any(|m| m.noun.contains("fill")));
+}

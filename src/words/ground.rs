@@ -20,6 +20,7 @@ use super::wordnet::{Pos, SynsetId, wordnet};
 struct RulesFile {
     object_under: Vec<String>,
     not_object_under: Vec<String>,
+    placeable_within: Vec<String>,
     room_under: Vec<String>,
     family_stop: Vec<String>,
     count_smoothing: f64,
@@ -52,6 +53,7 @@ pub enum GroundError {
 pub struct Rules {
     object_under: Vec<SynsetId>,
     not_object_under: Vec<SynsetId>,
+    placeable_within: Vec<SynsetId>,
     room_under: Vec<SynsetId>,
     family_stop: HashSet<SynsetId>,
     count_smoothing: f64,
@@ -89,6 +91,7 @@ impl Rules {
         Ok(Rules {
             object_under: resolve(&f.object_under)?,
             not_object_under: resolve(&f.not_object_under)?,
+            placeable_within: resolve(&f.placeable_within)?,
             room_under: resolve(&f.room_under)?,
             family_stop: resolve(&f.family_stop)?.into_iter().collect(),
             count_smoothing: f.count_smoothing,
@@ -125,7 +128,9 @@ impl Rules {
 
     /// A sense that names a placeable physical thing.
     pub fn placeable(&self, s: SynsetId) -> bool {
-        self.under_any(s, &self.object_under) && !self.under_any(s, &self.not_object_under)
+        self.under_any(s, &self.object_under)
+            && (self.under_any(s, &self.placeable_within)
+                || !self.under_any(s, &self.not_object_under))
     }
 
     /// A sense that pictures something ("photograph", "painting", "statue", "model"): what
@@ -148,7 +153,7 @@ impl Rules {
 
     /// A sense that names a room, a building or a place of business.
     pub fn roomlike(&self, s: SynsetId) -> bool {
-        self.under_any(s, &self.room_under)
+        self.under_any(s, &self.room_under) && !self.under_any(s, &self.placeable_within)
     }
 }
 
@@ -758,8 +763,18 @@ mod tests {
             "printers",
             "shelves",
             "vases",
+            // Under enclosure, an area of a structure, in WordNet; `placeable_within`.
+            "birdcage",
+            "playpen",
+            "terrarium",
+            "kiln",
         ] {
             assert_eq!(verdict(w), Verdict::Object, "{w}: {:?}", noun_info(w));
+            assert!(!is_room_word(w), "{w}");
+        }
+        // The same anchors keep the rooms and pits of that branch out.
+        for w in ["crypt", "dining area"] {
+            assert_ne!(verdict(w), Verdict::Object, "{w}");
         }
     }
 
