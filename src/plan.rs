@@ -647,6 +647,22 @@ mod tests {
     }
 
     #[test]
+    fn a_counted_thing_gets_no_defaults_whose_head_it_is() {
+        // The exam room's cabinets usually hold pill boxes and bandage boxes; "a box of latex
+        // gloves" counts the room's boxes.
+        let plain = plan_room(&prompt::read(
+            "An exam room with an exam table and a cabinet.",
+        ));
+        assert!(plain.count_of("pill box") + plain.count_of("bandage box") > 0);
+        let plan = plan_room(&prompt::read(
+            "An exam room with an exam table, a cabinet and a counter that holds a box of latex \
+             gloves.",
+        ));
+        assert_eq!(plan.count_of("pill box") + plan.count_of("bandage box"), 0);
+        assert_eq!(plan.count_of("box"), 1);
+    }
+
+    #[test]
     fn a_default_does_not_hide_another_default_of_its_kind() {
         // The bathroom's shelf and towel rack (a kind of rack, a kind of shelf), its cabinet
         // and medicine cabinet: all the room's.

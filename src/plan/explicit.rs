@@ -27,9 +27,15 @@ impl Builder<'_> {
     }
 
     /// Asked for with an exact number: defaults add no more of it (a table "set for 4 with a
-    /// plate each" has four plates, not four plus a china cabinet full).
+    /// plate each" has four plates, not four plus a china cabinet full), nor a compound whose
+    /// head it is ("a box of latex gloves" on the counter: no pill boxes besides).
     pub(super) fn fixed_by_prompt(&self, noun: &str) -> bool {
-        let fixes = |c: &str| c == noun || covers(self.lex, noun, c) || same_build(noun, c);
+        let headed = |c: &str| {
+            noun.strip_suffix(c).is_some_and(|m| m.ends_with(' '))
+                && crate::words::ground::is_kind_of_word(noun, c)
+        };
+        let fixes =
+            |c: &str| c == noun || covers(self.lex, noun, c) || same_build(noun, c) || headed(c);
         self.reading
             .mentions
             .iter()
