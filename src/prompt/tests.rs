@@ -1474,3 +1474,18 @@ fn a_bare_plural_subject_wordnet_reads_as_a_thing_is_one() {
     assert_eq!(find(&r, "skein").count, Count::Several);
     assert!(!r.mentions.iter().any(|m| m.noun.contains("fill")));
 }
+
+#[test]
+fn each_containing_after_plural_containers_fills_the_containers() {
+    let r = read(
+        "Two tables near the entrance hold produce bins, each containing at least three fruits.",
+    );
+    assert!(
+        matches!(find(&r, "fruit").per, Some(Per::Each { parent }) if parent == index(&r, "produce bin"))
+    );
+    // Not a container: the subject's.
+    let r = read("Four tables fill the room, each with two chairs.");
+    assert!(
+        matches!(find(&r, "chair").per, Some(Per::Each { parent }) if parent == index(&r, "table"))
+    );
+}

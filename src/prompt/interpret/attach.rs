@@ -494,11 +494,20 @@ impl Interp<'_> {
                     r.instance.is_none() && is_plural_count(self.mentions[r.m].count)
                 })
             };
-            let parents = [&c.subject, &c.focus, &c.last_np]
-                .into_iter()
-                .find(|refs| plural(refs))
-                .cloned()
-                .unwrap_or_else(|| c.focus.clone());
+            // "Two tables hold produce bins, each containing three fruits": what "each" holds
+            // goes in the plural containers just named.
+            let containing = matches!(next, Some(Item::Verb(class, _)) if class == "possess")
+                && plural(&c.last_np)
+                && c.last_np.iter().all(|r| self.mentions[r.m].container);
+            let parents = if containing {
+                c.last_np.clone()
+            } else {
+                [&c.subject, &c.focus, &c.last_np]
+                    .into_iter()
+                    .find(|refs| plural(refs))
+                    .cloned()
+                    .unwrap_or_else(|| c.focus.clone())
+            };
             if parents.is_empty() {
                 return;
             }
