@@ -704,9 +704,8 @@ impl<'a> Phrase<'a> {
     fn bare_plural_thing(&self, j: usize) -> bool {
         j == self.start
             && self.at(j).is_some_and(|w| {
-                let plural =
-                    self.lex.is_plural(w) || (self.lex.plurale_tantum(w) && !w.ends_with("ss"));
-                plural && ground::verdict(w) == ground::Verdict::Object
+                (self.lex.is_plural(w) || plural_only(self.lex, w))
+                    && ground::verdict(w) == ground::Verdict::Object
             })
     }
 
@@ -1428,16 +1427,21 @@ fn landmark_before_thing(lex: &Lexicon, tokens: &[Token], k: usize) -> bool {
     let (Some(w), Some(next)) = (word(tokens, k), word(tokens, k + 1)) else {
         return false;
     };
-    let verb_next = word(tokens, k + 2).is_some_and(|x| lex.determiner(x).is_some())
-        || tokens.get(k + 2).is_some_and(|t| lex.number(t).is_some());
     lex.landmark(w).is_some()
         && !lex.is_plural(w)
         && lex.landmark(next).is_none()
         && lex.part(next).is_none()
         && lex.verb(next).is_none()
         && lex.preposition_at(tokens, k + 1).is_none()
-        && !verb_next
+        && !determiner_or_number_at(lex, tokens, k + 2)
         && ground::verdict(next) == ground::Verdict::Object
+}
+
+/// A determiner or a number at `k`: a noun phrase starts there, so the word before it is no
+/// part of a compound noun (a verb, if WordNet knows it as one).
+fn determiner_or_number_at(lex: &Lexicon, tokens: &[Token], k: usize) -> bool {
+    word(tokens, k).is_some_and(|x| lex.determiner(x).is_some())
+        || tokens.get(k).is_some_and(|t| lex.number(t).is_some())
 }
 
 /// Length of a compound noun WordNet knows as written (2 or 3 words, the last possibly plural)
@@ -1760,8 +1764,7 @@ fn open_head(
         // number right after it is that verb; no compound noun runs into a determiner.
         if k > j
             && crate::words::wordnet::wordnet().has_pos(x, crate::words::wordnet::Pos::Verb)
-            && (word(tokens, k + 1).is_some_and(|n| lex.determiner(n).is_some())
-                || tokens.get(k + 1).is_some_and(|t| lex.number(t).is_some()))
+            && determiner_or_number_at(lex, tokens, k + 1)
         {
             break;
         }
