@@ -206,6 +206,26 @@ fn suffixed_style(lex: &Lexicon, tokens: &[Token], at: usize) -> Option<Modifier
     None
 }
 
+/// "a truing stand": an -ing form of a WordNet verb that WordNet has no noun for, right after a
+/// determiner and before a singular noun WordNet reads as a placeable thing, is a modifier
+/// whatever the verb table lists.
+fn rare_gerund_before_thing(lex: &Lexicon, tokens: &[Token], at: usize) -> bool {
+    let wn = crate::words::wordnet::wordnet();
+    let (Some(w), Some(next)) = (tokens.get(at), tokens.get(at + 1)) else {
+        return false;
+    };
+    next.is_word()
+        && !wn
+            .base_forms(&w.text, crate::words::wordnet::Pos::Verb)
+            .is_empty()
+        && crate::words::ground::noun_info(&w.text).is_none()
+        && at > 0
+        && lex.determiner(&tokens[at - 1].text).is_some()
+        && !lex.is_plural(&next.text)
+        && lex.determiner(&next.text).is_none()
+        && crate::words::ground::verdict(&next.text) == crate::words::ground::Verdict::Object
+}
+
 /// Recognises the modifier starting at `tokens[at]`, or None when the word is not one (a noun,
 /// a room word, a function word, punctuation). `sentence_start` is the first token of the
 /// sentence (a capital there says nothing).
@@ -278,21 +298,36 @@ pub(crate) fn modifier_at(
         });
     if after_det
         && w.ends_with("ing")
-        && lex.verb(w).is_some()
-        && lex.noun_at(tokens, at + 1).is_some()
+        && (lex.verb(w).is_some() && lex.noun_at(tokens, at + 1).is_some()
+            || rare_gerund_before_thing(lex, tokens, at))
     {
         return Some(single(t, ModKind::Adjective(w.to_string())));
     }
     // "a mounted vise", "two stacked crates", "the sleeping loft", "two full bathrooms": a
     // participle or adjective the verb table lists, right after a determiner or a number and
-    // before a noun, modifies it.
+    // before a noun, modifies it. So does an -ed participle after an adjective that follows a
+    // determiner ("an enormous illuminated psalter").
     let wn = crate::words::wordnet::wordnet();
+    let after_adjective = |k: usize| {
+        k > 0
+            && tokens.get(k).is_some_and(|p| {
+                p.is_word()
+                    && crate::words::ground::is_adjective(&p.text)
+                    && lex.noun_at(tokens, k).is_none()
+                    && lex.verb(&p.text).is_none()
+            })
+            && tokens
+                .get(k - 1)
+                .is_some_and(|d| lex.determiner(&d.text).is_some() || lex.number(d).is_some())
+    };
     if (w.ends_with("ed") || w.ends_with("ing") || crate::words::ground::is_adjective(w))
         && lex.verb(w).is_some()
         && at > 0
-        && tokens
-            .get(at - 1)
-            .is_some_and(|p| lex.determiner(&p.text).is_some() || lex.number(p).is_some())
+        && tokens.get(at - 1).is_some_and(|p| {
+            lex.determiner(&p.text).is_some()
+                || lex.number(p).is_some()
+                || (w.ends_with("ed") && after_adjective(at - 1))
+        })
         && tokens.get(at + 1).is_some_and(|u| {
             u.is_word()
                 && !lex.is_function_word(&u.text)

@@ -469,7 +469,11 @@ fn verb_after_singular(
         && wn.is_lemma(w, crate::words::wordnet::Pos::Verb)
         && lex.preposition_at(tokens, i).is_none()
         && !lex.is_function_word(w);
-    if plural && np_next && base_verb {
+    // "Two repair stands clamp bicycles": a bare plural noun after it is its object too.
+    let bare_plural_next = word(tokens, i + 1).is_some_and(|n| {
+        lex.is_plural(n) && crate::words::ground::is_noun(n) && lex.verb(n).is_none()
+    });
+    if plural && (np_next || bare_plural_next) && base_verb {
         let landmark_next =
             (i + 2..i + 4).any(|k| word(tokens, k).is_some_and(|x| lex.landmark(x).is_some()));
         return Some(if landmark_next { "locate" } else { "other" });

@@ -404,6 +404,8 @@ impl<'a> Phrase<'a> {
                 && !lex.is_function_word(w)
                 && lex.quantifier_at(tokens, j).is_none()
                 && ground::is_noun(w)
+                // "a caddy of crayons": a container holds its contents; it is no measure.
+                && !ground::is_kind_of_word(w, "container")
                 && word(tokens, j + 2).is_some_and(|x| {
                     lex.is_plural(x) && (lex.noun_at(tokens, j + 2).is_some() || ground::is_noun(x))
                 })
@@ -1437,6 +1439,22 @@ fn landmark_before_thing(lex: &Lexicon, tokens: &[Token], k: usize) -> bool {
         && ground::verdict(next) == ground::Verdict::Object
 }
 
+/// A plural at `k` after a singular noun, which WordNet reads as a placeable thing once
+/// singular and which no determiner or number follows (then it would be a verb taking an
+/// object).
+fn plural_thing_after_singular(lex: &Lexicon, tokens: &[Token], k: usize) -> bool {
+    let (Some(prev), Some(x)) = (word(tokens, k - 1), word(tokens, k)) else {
+        return false;
+    };
+    lex.is_plural(x)
+        && !lex.is_plural(prev)
+        && ground::is_noun(prev)
+        && lex.determiner(x).is_none()
+        && lex.preposition_at(tokens, k).is_none()
+        && !determiner_or_number_at(lex, tokens, k + 1)
+        && ground::verdict(&lex.singular(x)) == ground::Verdict::Object
+}
+
 /// A determiner or a number at `k`: a noun phrase starts there, so the word before it is no
 /// part of a compound noun (a verb, if WordNet knows it as one).
 fn determiner_or_number_at(lex: &Lexicon, tokens: &[Token], k: usize) -> bool {
@@ -1704,6 +1722,7 @@ fn open_head(
     let at = |k: usize| if k < end { word(tokens, k) } else { None };
     let singular_det = matches!(np.det.as_deref(), Some("indefinite" | "each" | "another"))
         || np.number == Some(1);
+    let plural_count = np.number.is_some_and(|n| n > 1);
     let mut k = j;
     while k < end && k - j < 4 {
         let Some(x) = at(k) else { break };
@@ -1771,7 +1790,18 @@ fn open_head(
         // "a heavy iron mount dominates": after modifiers, a noun in its base form that the
         // verb table also lists ends the phrase as its noun; a singular subject's verb would
         // end in -s.
-        if k == j && k > phrase_start && base_form_noun(lex, tokens, k) {
+        if k == j
+            && k > phrase_start
+            && base_form_noun(lex, tokens, k)
+            && !(plural_count && plural_thing_after_singular(lex, tokens, k + 1))
+        {
+            k += 1;
+            break;
+        }
+        // "Two repair stands clamp bicycles": a count of several before a singular noun wants
+        // a plural head, so a plural the verb table also lists ("stands", "rests") that
+        // WordNet reads as a thing ends the compound as its head.
+        if k > j && plural_count && plural_thing_after_singular(lex, tokens, k) {
             k += 1;
             break;
         }
@@ -2049,12 +2079,17 @@ fn animal_placed(lex: &Lexicon, tokens: &[Token], start: usize, next: usize) -> 
     !purpose && (spatial || placing)
 }
 
-/// "a stack of flyers", "full of logbooks": the phrase at `start` follows "of" after a group
-/// word or "full".
+/// "a stack of flyers", "full of logbooks", "a jar of cotton rolls": the phrase at `start`
+/// follows "of" after a group word, "full" or a container.
 fn of_group(lex: &Lexicon, tokens: &[Token], start: usize) -> bool {
     start >= 2
         && word(tokens, start - 1) == Some("of")
-        && word(tokens, start - 2).is_some_and(|g| g == "full" || lex.group(g).is_some())
+        && word(tokens, start - 2).is_some_and(|g| {
+            g == "full"
+                || lex.group(g).is_some()
+                // "a jar of cotton rolls": what a container holds is in it.
+                || lex.entry(&lex.singular(g)).is_some_and(|e| e.container)
+        })
 }
 
 /// Whether the list the phrase at `start` ends is placed: back over the list's earlier

@@ -1485,3 +1485,86 @@ fn each_containing_after_plural_containers_fills_the_containers() {
         matches!(find(&r, "chair").per, Some(Per::Each { parent }) if parent == index(&r, "table"))
     );
 }
+
+#[test]
+fn a_participle_after_an_adjective_describes_the_noun_after_it() {
+    let r = read("A heavy lectern supports an enormous illuminated psalter.");
+    assert_eq!(find(&r, "psalter").count, Count::Exactly(1));
+    assert!(
+        !r.mentions
+            .iter()
+            .any(|m| m.noun.contains("illuminated ") && m.category != "psalter")
+    );
+}
+
+#[test]
+fn a_count_of_several_takes_the_plural_after_a_singular_noun_as_its_head() {
+    // "repair" is an act to WordNet and "stands" a verb to the verb table; the count wants
+    // a plural head. The base-form verb after the subject takes a bare plural object.
+    let r = read("Two repair stands clamp bicycles.");
+    assert_eq!(find(&r, "repair stand").count, Count::Exactly(2));
+    let bike = find(&r, "bicycle");
+    assert_eq!(bike.noun, "bicycle");
+    // One noun after "a" keeps its verb reading.
+    let r = read("A repair kit stands on the shelf.");
+    assert_eq!(mentions_of(&r, "repair stand"), 0);
+}
+
+#[test]
+fn a_gerund_wordnet_has_no_noun_for_modifies_the_thing_after_it() {
+    let r = read("A truing stand sits next to a stack of spare rims.");
+    let stand = find(&r, "stand");
+    assert_eq!(stand.noun, "truing stand");
+    assert_eq!(stand.count, Count::Exactly(1));
+}
+
+#[test]
+fn on_either_side_doubles_one_thing_not_each_of_two() {
+    let r = read(
+        "A reclining dental chair sits in the middle. The dentist's stool and the \
+         hygienist's stool are parked on either side.",
+    );
+    let stools: Vec<&Mention> = r
+        .mentions
+        .iter()
+        .filter(|m| m.category == "stool")
+        .collect();
+    assert_eq!(stools.len(), 2);
+    for s in stools {
+        assert_eq!(s.count, Count::Exactly(1));
+        assert_eq!(
+            s.relations.first().map(|x| (x.kind, x.target)),
+            Some((
+                RelationKind::Flanking,
+                Target::Mention(index(&r, "dental chair"))
+            ))
+        );
+    }
+    let r = read("A bed stands in the middle with a lamp on either side.");
+    assert_eq!(find(&r, "table lamp").count, Count::Exactly(2));
+}
+
+#[test]
+fn a_container_is_no_measure_and_holds_what_follows_of() {
+    // "caddy" is no lexicon noun: WordNet's container, not a pile of crayons.
+    let r = read("A small desk is topped with a caddy of crayons and a jar of cotton rolls.");
+    find(&r, "caddy");
+    let rolls = find(&r, "roll");
+    assert_eq!(rolls.noun, "cotton roll");
+    assert_eq!(rel(&r, "roll", RelationKind::In).as_deref(), Some("jar"));
+}
+
+#[test]
+fn a_second_participle_after_each_is_per_parent_too() {
+    let r = read(
+        "Five low tables fill the middle of the room, each ringed by four tiny chairs and \
+         topped with a caddy of crayons.",
+    );
+    let table = index(&r, "table");
+    for cat in ["chair", "caddy"] {
+        assert!(
+            matches!(find(&r, cat).per, Some(Per::Each { parent }) if parent == table),
+            "{cat}"
+        );
+    }
+}

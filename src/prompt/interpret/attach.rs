@@ -158,10 +158,25 @@ impl Interp<'_> {
             "each_side" => Some(RelationKind::Flanking),
             _ => None,
         };
+        // "The dentist's stool and the hygienist's stool are parked on either side": the
+        // sides are those of the thing named before them, not of one of them.
+        let ctx_parent = match ctx_parent {
+            Some(p) if c.focus.iter().any(|f| f.m == p) => c
+                .focus
+                .iter()
+                .map(|f| f.m)
+                .min()
+                .and_then(|first| (0..first).rev().find(|&m| !self.mentions[m].negated)),
+            other => other,
+        };
         if let Some(kind) = kind {
             if let Some(parent) = ctx_parent {
+                // "a lamp on either side": one per side; "the dentist's stool and the
+                // hygienist's stool are parked on either side": one each.
+                let one_thing = c.focus.len() == 1;
                 for f in c.focus.clone() {
                     if kind == RelationKind::Flanking
+                        && one_thing
                         && self.mentions[f.m].count == Count::Exactly(1)
                     {
                         self.mentions[f.m].count = Count::Exactly(2);
@@ -269,6 +284,14 @@ impl Interp<'_> {
                     // "Each table is covered with a cloth", ", every table covered with a
                     // cloth": one per table.
                     c.ctx = Ctx::Each(subject);
+                    c.stack.clear();
+                    c.stack.push(Ctx::Room);
+                    c.each_with = matches!(chunks.get(k + 1).map(|x| &x.item), Some(Item::With));
+                } else if !c.distributed.is_empty() && k > 0 && chunks[k - 1].item == Item::And {
+                    // ", each ringed by four chairs and topped with a caddy": the second
+                    // participle is still about each of them.
+                    c.focus = c.distributed.clone();
+                    c.ctx = Ctx::Each(c.distributed.clone());
                     c.stack.clear();
                     c.stack.push(Ctx::Room);
                     c.each_with = matches!(chunks.get(k + 1).map(|x| &x.item), Some(Item::With));
@@ -511,6 +534,7 @@ impl Interp<'_> {
             if parents.is_empty() {
                 return;
             }
+            c.distributed = parents.clone();
             match next {
                 Some(Item::Prep(p)) => {
                     c.pending = Some(Pending {

@@ -115,6 +115,9 @@ struct Clause {
     bare_number: Option<u32>,
     /// ", each topped with": the "with" keeps the per-parent context.
     each_with: bool,
+    /// The parents of the clause's ", each ...", for a second participle joined by "and"
+    /// (", each ringed by four chairs and topped with a caddy").
+    distributed: Vec<Ref>,
     /// The phrase at hand is an item of a list that goes on to its last item ("A, B and C"
     /// up to the end of the sentence).
     list_goes_on: bool,
@@ -152,6 +155,7 @@ impl Clause {
             each_subject: false,
             bare_number: None,
             each_with: false,
+            distributed: Vec::new(),
             list_goes_on: false,
         }
     }
