@@ -7,7 +7,7 @@
 use std::ops::Range;
 
 pub(crate) use super::phrase::{Head, Np, Pronoun};
-use super::phrase::{parse_np, pronoun_np, quantifier_fits, word};
+use super::phrase::{apposed_count, parse_np, pronoun_np, quantifier_fits, word};
 use crate::knowledge::Knowledge;
 use crate::words::ground;
 use crate::words::lexicon::Lexicon;
@@ -85,6 +85,10 @@ pub(crate) fn chunk_sentence(
             TokenKind::Punct('&' | '/') => {
                 push(&mut out, Item::And, 1);
                 i += 1;
+                continue;
+            }
+            TokenKind::Punct('\u{2014}') => {
+                i = apposed_count_after(lex, kb, tokens, i, end, &mut out);
                 continue;
             }
             TokenKind::Punct(_) => {
@@ -408,6 +412,42 @@ fn measures_of_variety(tokens: &[Token], out: &mut [Chunk]) {
         if first.is_some_and(|w| VARIETY.contains(&w)) && measure {
             np.head = Head::NonObject;
         }
+    }
+}
+
+/// A dash at `i`: when a count alone follows up to a second dash and the phrase before the
+/// first dash is a thing named in the plural without a count, the count is that phrase's
+/// ("Stuffed animals — at least a dozen — tumble out"). Returns where chunking goes on.
+fn apposed_count_after(
+    lex: &Lexicon,
+    kb: &Knowledge,
+    tokens: &[Token],
+    i: usize,
+    end: usize,
+    out: &mut [Chunk],
+) -> usize {
+    let close = (i + 1..end.min(i + 8)).find(|&k| tokens[k].is_punct('\u{2014}'));
+    let Some(close) = close else {
+        return i + 1;
+    };
+    let Some(Chunk {
+        item: Item::Np(np), ..
+    }) = out.last_mut()
+    else {
+        return i + 1;
+    };
+    let bare_plural = np.plural
+        && np.number.is_none()
+        && np.quant.is_none()
+        && np.group.is_none()
+        && matches!(np.head, Head::Object { .. });
+    match apposed_count(lex, kb, tokens, i + 1, close) {
+        Some((number, quant)) if bare_plural => {
+            np.number = number;
+            np.quant = quant;
+            close + 1
+        }
+        _ => i + 1,
     }
 }
 

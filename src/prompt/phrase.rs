@@ -226,6 +226,44 @@ pub(crate) fn parse_np(
     Some((np, next))
 }
 
+/// "Stuffed animals — at least a dozen — tumble out", "Flash sheets — dozens of them — cover
+/// the walls": a count alone between `start` and `end` (the words inside a pair of dashes),
+/// possibly followed by "of them", "in all", "in total" or "or so". Returns the number and
+/// the quantifier class read.
+pub(crate) fn apposed_count(
+    lex: &Lexicon,
+    kb: &Knowledge,
+    tokens: &[Token],
+    start: usize,
+    end: usize,
+) -> Option<(Option<u32>, Option<String>)> {
+    let phrase = Phrase {
+        lex,
+        kb,
+        tokens,
+        start,
+        end,
+        sentence_start: start,
+        in_list: false,
+    };
+    let mut np = blank_np();
+    let j = phrase.read_counts(&mut np);
+    let rest: Vec<&str> = (j..end).filter_map(|k| word(tokens, k)).collect();
+    let tail_ok = (j..end).all(|k| word(tokens, k).is_some())
+        && matches!(
+            rest.as_slice(),
+            [] | ["of", "them"] | ["in", "all"] | ["in", "total"] | ["or", "so"] | ["or", "more"]
+        );
+    let counted = np.number.is_some() || np.quant.is_some();
+    (counted && tail_ok && !np.negated && np.ordinal.is_none()).then(|| {
+        let quant = match (np.quant, rest.as_slice()) {
+            (None, ["or", "more"]) => Some("at_least".to_string()),
+            (q, _) => q,
+        };
+        (np.number, quant)
+    })
+}
+
 /// A phrase with no words read yet.
 pub(crate) fn blank_np() -> Np {
     Np {

@@ -1568,3 +1568,32 @@ fn a_second_participle_after_each_is_per_parent_too() {
         );
     }
 }
+
+#[test]
+fn the_object_of_a_preposition_is_none_of_the_things_it_places() {
+    // A display case is a kind of counter to the lexicon; "the counter" is another thing.
+    let r = read("Glass display cases form a U around the counter.");
+    let counter = index(&r, "counter");
+    assert_eq!(
+        rel(&r, "display case", RelationKind::Around).as_deref(),
+        Some("counter")
+    );
+    assert_ne!(counter, index(&r, "display case"));
+    // A thing named before still takes the reference.
+    let r = read("A sofa faces the window. A lamp stands next to the sofa.");
+    assert_eq!(mentions_of(&r, "sofa"), 1);
+}
+
+#[test]
+fn a_count_between_dashes_counts_the_plural_before_it() {
+    let r = read(
+        "Stuffed animals — at least a dozen — tumble out of a toy bin. Chairs – eight in \
+         all – line the table.",
+    );
+    assert_eq!(find(&r, "stuffed animal").count, Count::AtLeast(12));
+    assert_eq!(find(&r, "chair").count, Count::Exactly(8));
+    // A dash that sets off no count changes nothing.
+    let r = read("The kitchen is basic — a stove, a sink and two chairs.");
+    assert_eq!(find(&r, "chair").count, Count::Exactly(2));
+    assert_eq!(find(&r, "stove").count, Count::Exactly(1));
+}

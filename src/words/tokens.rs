@@ -80,9 +80,12 @@ pub fn lex(text: &str) -> Vec<Token> {
             continue;
         }
         chars.next();
+        // An en or em dash sets off a phrase ("Stuffed animals — at least a dozen — tumble
+        // out"); both read as an em dash.
+        let c = if c == '\u{2013}' { '\u{2014}' } else { c };
         if matches!(
             c,
-            ',' | '.' | ';' | ':' | '!' | '?' | '(' | ')' | '+' | '&' | '/'
+            ',' | '.' | ';' | ':' | '!' | '?' | '(' | ')' | '+' | '&' | '/' | '\u{2014}'
         ) {
             // A decimal point inside a number ("2.5 m") is not a sentence end.
             let in_number = c == '.'

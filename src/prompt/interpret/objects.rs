@@ -555,6 +555,13 @@ impl Interp<'_> {
         };
         let another = np.det.as_deref() == Some("another");
         let definite = np.is_definite() || (np.other && !another);
+        // "Glass display cases form a U around the counter": the object of a preposition is
+        // not one of the things it places (a display case is a kind of counter).
+        let own: Vec<usize> = c
+            .pending
+            .as_ref()
+            .map(|p| p.attach.iter().map(|r| r.m).collect())
+            .unwrap_or_default();
         let existing = |me: &Self| -> Option<usize> {
             let last = |s: &str| s.rsplit(' ').next().unwrap_or(s).to_string();
             let first = |s: &str| s.split(' ').next().unwrap_or(s).to_string();
@@ -568,14 +575,14 @@ impl Interp<'_> {
                 let theirs: Vec<&str> = m.noun.split(' ').collect();
                 kinds.iter().all(|k| theirs.contains(&k.as_str()))
             };
-            me.recent(|m| m.category == *canonical && same_kind(m), &[])
+            me.recent(|m| m.category == *canonical && same_kind(m), &own)
                 .or_else(|| {
                     me.recent(
                         |m| {
                             (last(&m.noun) == last(noun) || last(&m.category) == last(canonical))
                                 && same_kind(m)
                         },
-                        &[],
+                        &own,
                     )
                 })
                 .or_else(|| {
@@ -587,7 +594,7 @@ impl Interp<'_> {
                                 .is_some_and(|k| k == canonical.as_str())
                                 && same_kind(m)
                         },
-                        &[],
+                        &own,
                     )
                 })
                 .or_else(|| {
@@ -602,7 +609,7 @@ impl Interp<'_> {
                                         == Some(k.as_str())
                                     && same_kind(m)
                             },
-                            &[],
+                            &own,
                         )
                     })
                 })
