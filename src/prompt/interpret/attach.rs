@@ -280,18 +280,19 @@ impl Interp<'_> {
                 } else if finite {
                     c.ctx = Ctx::Holder(subject, Intro::Verb(contains));
                     c.rel_scope = c.rel_scope || c.pronoun_subject;
-                } else if c.each_subject && !subject.is_empty() {
+                } else if let Some(parents) = (c.each_subject && !subject.is_empty())
+                    .then(|| subject.clone())
+                    .or_else(|| {
+                        // ", each ringed by four chairs and topped with a caddy": the second
+                        // participle is still about each of them.
+                        (!c.distributed.is_empty() && k > 0 && chunks[k - 1].item == Item::And)
+                            .then(|| c.distributed.clone())
+                    })
+                {
                     // "Each table is covered with a cloth", ", every table covered with a
                     // cloth": one per table.
-                    c.ctx = Ctx::Each(subject);
-                    c.stack.clear();
-                    c.stack.push(Ctx::Room);
-                    c.each_with = matches!(chunks.get(k + 1).map(|x| &x.item), Some(Item::With));
-                } else if !c.distributed.is_empty() && k > 0 && chunks[k - 1].item == Item::And {
-                    // ", each ringed by four chairs and topped with a caddy": the second
-                    // participle is still about each of them.
-                    c.focus = c.distributed.clone();
-                    c.ctx = Ctx::Each(c.distributed.clone());
+                    c.focus.clone_from(&parents);
+                    c.ctx = Ctx::Each(parents);
                     c.stack.clear();
                     c.stack.push(Ctx::Room);
                     c.each_with = matches!(chunks.get(k + 1).map(|x| &x.item), Some(Item::With));
