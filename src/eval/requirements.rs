@@ -426,6 +426,15 @@ impl Noun {
             }
             next = e.and_then(|e| e.kind_of.clone());
         }
+        // A compound the lexicon does not list is a kind of its head noun: a "clawfoot tub"
+        // is a tub, and a tub a bathtub.
+        if entry.is_none()
+            && let Some((_, last)) = normal.rsplit_once(' ')
+        {
+            let head = Noun::read(last);
+            broader.insert(head.canonical);
+            broader.extend(head.broader);
+        }
         Noun {
             normal,
             canonical,
@@ -1046,6 +1055,16 @@ mod tests {
             found(&s, r#"{"object": "kitchen chairs", "count": ">2"}"#),
             (3, true)
         );
+    }
+
+    #[test]
+    fn a_compound_the_lexicon_lacks_is_a_kind_of_its_head() {
+        // "tub" is a synonym of "bathtub"; the lexicon does not list "clawfoot tub".
+        assert!(name_meets("bathtub", "clawfoot_tub"));
+        assert!(name_meets("tub", "clawfoot tub"));
+        // Not the other way, and not through a word before the head.
+        assert!(!name_meets("clawfoot tub", "bathtub"));
+        assert!(!name_meets("bathtub", "tub brush"));
     }
 
     #[test]

@@ -657,6 +657,10 @@ impl<'a> Phrase<'a> {
                 np.head = Head::NonObject;
                 return Some(j + len);
             }
+            if np.det.as_deref() == Some("definite") && self.building_at(j + len) {
+                np.head = Head::NonObject;
+                return Some(j + len + 1);
+            }
             if !self.bare_ambiguous(w, j, noun_len, before.evidence) {
                 let noun = NounAt {
                     start: j,
@@ -1169,6 +1173,14 @@ impl<'a> Phrase<'a> {
         None
     }
 
+    /// Whether the word at `k` names a building the nouns before it say the use of ("the ham
+    /// radio shack"): a word the lexicon does not know whose every sense is a building or
+    /// shelter. Only after "the": "a toy barn" and "a gingerbread house" are things.
+    fn building_at(&self, k: usize) -> bool {
+        self.at(k)
+            .is_some_and(|w| self.lex.noun_at(self.tokens, k).is_none() && ground::is_building(w))
+    }
+
     /// Open vocabulary: words the lexicon does not know, the last a noun WordNet grounds.
     fn open_vocabulary_head(&self, np: &mut Np, before: &BeforeHead) -> Option<usize> {
         let (lex, tokens, j) = (self.lex, self.tokens, before.j);
@@ -1192,6 +1204,12 @@ impl<'a> Phrase<'a> {
             Open::Lexicon { before: at, n2, .. } if names_building(lex, tokens, at, n2) => {
                 np.head = Head::NonObject;
                 Some(at + n2)
+            }
+            Open::Lexicon { before: at, n2, .. }
+                if np.det.as_deref() == Some("definite") && self.building_at(at + n2) =>
+            {
+                np.head = Head::NonObject;
+                Some(at + n2 + 1)
             }
             Open::Lexicon {
                 before: at,

@@ -787,18 +787,37 @@ fn single_room(
                 .collect()
         })
         .unwrap_or_default();
-    let room_np = role
+    let unplaced = role
         .or_else(|| typed(first, true, false))
-        .or_else(|| typed(first, false, false))
-        .or_else(|| typed(first, true, true))
-        .or_else(|| typed(first, false, true))
+        .or_else(|| typed(first, false, false));
+    // "Out in a converted garden shed, the ham radio shack hums ...": a building the
+    // sentence's subject names comes before a room a preposition places.
+    let subject = unplaced
+        .is_none()
+        .then(|| building_subject(lex, tokens, first))
+        .flatten();
+    let room_np = unplaced
         .or_else(|| {
+            subject
+                .is_none()
+                .then(|| typed(first, true, true))
+                .flatten()
+        })
+        .or_else(|| {
+            subject
+                .is_none()
+                .then(|| typed(first, false, true))
+                .flatten()
+        })
+        .or_else(|| {
+            subject.is_none().then_some(())?;
             sentences
                 .iter()
                 .skip(1)
                 .find_map(|s| typed(s, false, false).or_else(|| typed(s, false, true)))
         });
     let room_np = room_np.or_else(|| {
+        subject.is_none().then_some(())?;
         first.iter().find_map(|c| match &c.item {
             Item::Np(np) if matches!(np.head, Head::Room { .. }) => Some(np.as_ref()),
             _ => None,
@@ -806,7 +825,7 @@ fn single_room(
     });
     let mut room = match room_np.map(|np| &np.head) {
         Some(Head::Room { key, words }) => RoomReading::new(key, words, words.clone()),
-        _ => match building_subject(lex, tokens, first) {
+        _ => match subject.or_else(|| building_subject(lex, tokens, first)) {
             Some(words) => {
                 let key = room_type_of_noun(&words);
                 RoomReading::new(&key, &words, words.clone())
@@ -880,19 +899,29 @@ fn building_subject(lex: &Lexicon, tokens: &[Token], first: &[Chunk]) -> Option<
         {
             return Some(two.clone());
         }
-        // "the honey house": a kind of building named by the word before it.
-        let noun_before = words.len() >= 2 && {
-            let w = &words[words.len() - 2];
+        // "the honey house", "the ham radio shack": a kind of building named by the nouns
+        // before it.
+        let modifying_noun = |w: &String| {
             crate::words::ground::is_noun(w)
                 && !lex.is_adjective(w)
                 && np.attrs.size.as_deref() != Some(w.as_str())
                 && !np.attrs.styles.iter().any(|x| x == w)
                 && lex.material(w).is_none()
         };
-        match two {
-            Some(two) if roomish(&one) && noun_before => Some(two),
-            _ => roomish(&one).then_some(one),
+        let nouns_before = words[..words.len() - 1]
+            .iter()
+            .rev()
+            .take_while(|w| modifying_noun(w))
+            .count();
+        if !roomish(&one) {
+            return None;
         }
+        let first = words.len() - 1 - nouns_before;
+        Some(if nouns_before == 0 {
+            one
+        } else {
+            format!("{} {one}", words[first..words.len() - 1].join(" "))
+        })
     })
 }
 

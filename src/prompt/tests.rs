@@ -1302,6 +1302,15 @@ fn the_subject_names_the_room_before_a_place_it_stands_in() {
     assert_eq!(r.rooms[0].words, "clubroom");
     let r = read("The honey house at the edge of the orchard is sticky. An extractor sits there.");
     assert_eq!(r.rooms[0].words, "honey house");
+    // A building named by its use, the subject, before the building a preposition places.
+    let r = read("Out in a converted garden shed, the ham radio shack hums. A desk fills a wall.");
+    assert_eq!(r.rooms.len(), 1);
+    assert_eq!(r.rooms[0].words, "ham radio shack");
+    assert!(
+        r.mentions.iter().all(|m| m.category != "radio"),
+        "{:?}",
+        r.mentions
+    );
 }
 
 #[test]

@@ -12,7 +12,7 @@ use crate::agents::{
     PlacementStyle, RunLog, StageConfig, StageSpec, StageSummary, Toolbox, run_stage,
 };
 use crate::plan::{Arrangement, RoomPlan, SurfaceWant, Want};
-use crate::scene::{ObjectKind, Support};
+use crate::scene::{ObjectKind, SceneObject, Support};
 use crate::state::SceneState;
 
 fn stage_config(kind: StageKind) -> StageConfig {
@@ -492,42 +492,76 @@ fn leftover_plan(scene: &SceneState, room: &str, plan: &RoomPlan, host: &str) ->
 /// hold: along a wall, in a corner, in the open middle of the room.
 const FLOOR_TOOLS: [&str; 3] = ["place_against_wall", "place_in_corner", "place_in_center"];
 
-/// The prompt's things entirely absent from the room once every stage and the leftover
-/// hosts had their turn: small things no surface could hold ("a dozen rolled yoga mats" on a
-/// rack the room has no space for) and pieces of furniture. A thing of which any is there,
-/// by its plan noun or by the name its description gives (tablecloths laid over their tables,
-/// one cable of a tangle), is left as it is: topping it up on the floor would more often add
-/// what is already there under another name than what is missing.
+/// The prompt's things missing from the room once every stage and the leftover hosts had
+/// their turn, each with the number missing.
+///
+/// Pieces of furniture are counted: "three music stands" of which the furniture stage placed
+/// two (a corner too tight for the third) miss one. A piece is told by the plan noun it was
+/// placed for, so the count is that of the plan.
+///
+/// Small things ("a dozen rolled yoga mats" on a rack the room has no space for) miss only
+/// when none is there, by its plan noun or by the name its description gives (tablecloths
+/// laid over their tables, one cable of a tangle): topping up a count on the floor would
+/// more often add what is already there under another name than what is missing.
 fn still_missing(scene: &SceneState, room: &str, plan: &RoomPlan) -> Vec<Want> {
+    let objects: Vec<&SceneObject> = scene
+        .scene
+        .objects
+        .iter()
+        .filter(|o| o.room == room && o.kind != ObjectKind::Architecture)
+        .collect();
     let present = |w: &Want| {
         let name = crate::assets::router::parse::object_name(&w.description)
             .map(|n| crate::scene::sanitize_name(&n));
-        scene
-            .scene
-            .objects
-            .iter()
-            .filter(|o| o.room == room && o.kind != ObjectKind::Architecture)
-            .any(|o| {
-                super::StageState::is_wanted(&scene.scene, w, o)
-                    || name.as_deref().is_some_and(|n| {
-                        o.category == n
-                            || o.name
-                                .as_deref()
-                                .map(crate::scene::sanitize_name)
-                                .as_deref()
-                                == Some(n)
-                    })
-            })
-    };
-    plan.furniture
-        .iter()
-        .chain(plan.surfaces.iter().flat_map(|g| g.items.iter()))
-        .filter(|w| w.explicit && !present(w))
-        .map(|w| Want {
-            arrangement: Arrangement::AgainstWall,
-            ..w.clone()
+        objects.iter().any(|o| {
+            super::StageState::is_wanted(&scene.scene, w, o)
+                || name.as_deref().is_some_and(|n| {
+                    o.category == n
+                        || o.name
+                            .as_deref()
+                            .map(crate::scene::sanitize_name)
+                            .as_deref()
+                            == Some(n)
+                })
         })
-        .collect()
+    };
+    let on_floor = |w: &Want, count: u32| Want {
+        arrangement: Arrangement::AgainstWall,
+        count,
+        ..w.clone()
+    };
+    let mut missing: Vec<Want> = Vec::new();
+    let mut counted: Vec<&str> = Vec::new();
+    for w in plan.furniture.iter().filter(|w| w.explicit) {
+        if counted.contains(&w.noun.as_str()) {
+            continue;
+        }
+        counted.push(&w.noun);
+        let wanted: u32 = plan
+            .furniture
+            .iter()
+            .filter(|o| o.explicit && o.noun == w.noun)
+            .map(|o| o.count)
+            .sum();
+        let placed = objects
+            .iter()
+            .filter(|o| super::StageState::is_wanted(&scene.scene, w, o))
+            .count() as u32;
+        if placed == 0 && present(w) {
+            continue;
+        }
+        if placed < wanted {
+            missing.push(on_floor(w, wanted - placed));
+        }
+    }
+    missing.extend(
+        plan.surfaces
+            .iter()
+            .flat_map(|g| g.items.iter())
+            .filter(|w| w.explicit && !present(w))
+            .map(|w| on_floor(w, w.count)),
+    );
+    missing
 }
 
 /// Stands what the prompt asked for and no stage could place on the floor, with the
@@ -876,5 +910,61 @@ mod tests {
         assert_eq!(count("cabinet"), defaults - 1);
         // A default that gave way is no removal to report.
         assert!(scene.scene.removed.is_empty(), "{:?}", scene.scene.removed);
+    }
+
+    #[test]
+    fn a_piece_of_furniture_short_of_its_count_is_topped_up_on_the_floor() {
+        let prompt = "A music room.";
+        let mut log = RunLog::default();
+        let layout =
+            crate::layout::stage::run_layout(prompt, 1, &Backend::Builtin, &mut log).unwrap();
+        let mut scene = SceneState::new(crate::scene::Scene::new(prompt, 1, "layout"));
+        crate::state::install_rooms(&mut scene, &layout.rooms).unwrap();
+        let room = layout.rooms[0].id.clone();
+        // "a music stand beside the piano ... two more music stands in the corner": three
+        // asked for in two wants, two placed.
+        let mut beside = want("music stand", Arrangement::Free);
+        let mut corner = beside.clone();
+        corner.count = 2;
+        corner.arrangement = Arrangement::AgainstWall;
+        beside.count = 1;
+        let plan = RoomPlan {
+            furniture: vec![beside, corner],
+            ..RoomPlan::default()
+        };
+        let mut state = StageState {
+            scene,
+            kind: StageKind::Furniture,
+            room: room.clone(),
+            entity: None,
+            plan: Arc::new(plan.clone()),
+            requests: 0,
+        };
+        let (tools, _) = tools_and_categories(StageKind::Furniture);
+        for _ in 0..2 {
+            let args = serde_json::json!({"description": "music stand"});
+            let placed = tools.call(
+                &mut state,
+                crate::agents::Role::Designer,
+                "place_against_wall",
+                args,
+            );
+            assert!(placed.is_ok(), "{placed:?}");
+        }
+        let stands = |scene: &SceneState| {
+            scene
+                .scene
+                .objects
+                .iter()
+                .filter(|o| o.category == "music_stand")
+                .count()
+        };
+        assert_eq!(stands(&state.scene), 2);
+        let (scene, placed) = place_missing_on_floor(state.scene, &room, &plan);
+        assert_eq!(placed, 1);
+        assert_eq!(stands(&scene), 3);
+        // Nothing is missing once the count is met.
+        let (scene, placed) = place_missing_on_floor(scene, &room, &plan);
+        assert_eq!((placed, stands(&scene)), (0, 3));
     }
 }
